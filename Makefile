@@ -1,0 +1,87 @@
+# rtk build. `make` builds build/rtk; `make RT_REAL=fixed` builds build-fixed/rtk.
+# `make demo` and `make check` install their own Debian dependencies first.
+
+RT_REAL ?= double
+ifeq ($(RT_REAL),fixed)
+BUILD ?= build-fixed
+REAL_FLAGS := -DRT_REAL_FIXED
+else ifeq ($(RT_REAL),double)
+BUILD ?= build
+REAL_FLAGS :=
+else
+$(error RT_REAL must be double or fixed)
+endif
+
+CC ?= cc
+OPT ?= -O2
+# Determinism: no FMA contraction, no fast-math, no errno side path for sqrt.
+DET_FLAGS := -ffp-contract=off -fno-fast-math -fno-math-errno
+WARN := -Wall -Wextra -Wshadow -Wstrict-prototypes -Wvla
+BASE_CFLAGS := -std=c11 $(OPT) -g $(WARN) $(DET_FLAGS) $(REAL_FLAGS) $(EXTRA_CFLAGS)
+CORE_CFLAGS := $(BASE_CFLAGS) -ffreestanding -fno-builtin
+PKGS := yaml-0.1 spng
+PLATFORM_CFLAGS := $(BASE_CFLAGS) -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -Icore \
+	$(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+LDLIBS := $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lyaml -lspng) -lpthread -lm
+
+DEB_PACKAGES := build-essential pkg-config libyaml-dev libspng-dev libcriterion-dev libcglm-dev
+
+CORE_SRC := $(filter-out core/real_%.c,$(wildcard core/*.c)) core/real_$(RT_REAL).c
+PLATFORM_SRC := $(filter-out platform/main.c,$(wildcard platform/*.c))
+TEST_SRC := $(wildcard tests/*.c)
+
+CORE_OBJ := $(CORE_SRC:%.c=$(BUILD)/%.o)
+PLATFORM_OBJ := $(PLATFORM_SRC:%.c=$(BUILD)/%.o)
+TEST_OBJ := $(TEST_SRC:%.c=$(BUILD)/%.o)
+
+.PHONY: all deps demo check test clean bench fuzz
+all: $(BUILD)/rtk
+
+$(BUILD)/core/%.o: core/%.c
+	@mkdir -p $(@D)
+	$(CC) $(CORE_CFLAGS) -MMD -MP -c $< -o $@
+
+$(BUILD)/platform/%.o: platform/%.c
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -MMD -MP -c $< -o $@
+
+$(BUILD)/tests/%.o: tests/%.c
+	@mkdir -p $(@D)
+	$(CC) $(PLATFORM_CFLAGS) -Iplatform -MMD -MP -c $< -o $@
+
+$(BUILD)/librtcore.a: $(CORE_OBJ)
+	@rm -f $@
+	ar rcs $@ $^
+
+$(BUILD)/librtplatform.a: $(PLATFORM_OBJ)
+	@rm -f $@
+	ar rcs $@ $^
+
+$(BUILD)/rtk: $(BUILD)/platform/main.o $(BUILD)/librtplatform.a $(BUILD)/librtcore.a
+	$(CC) $(OPT) -o $@ $^ $(LDLIBS)
+
+$(BUILD)/rtk-tests: $(TEST_OBJ) $(BUILD)/librtplatform.a $(BUILD)/librtcore.a
+	$(CC) $(OPT) -o $@ $^ $(LDLIBS) -lcriterion
+
+# Installs the Debian packages above when any is missing (root or sudo).
+deps:
+	@missing=""; for p in $(DEB_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
+	if [ -n "$$missing" ]; then \
+	  echo "installing:$$missing"; \
+	  if [ "$$(id -u)" = 0 ]; then sudo=""; else sudo=sudo; fi; \
+	  $$sudo apt-get update -qq && $$sudo apt-get install -y -qq $$missing; \
+	fi
+
+demo: deps
+	$(MAKE) $(BUILD)/rtk
+	$(BUILD)/rtk render scenes/demo.yaml -o demo.png
+	@echo "wrote demo.png"
+
+check: deps
+	$(MAKE) $(BUILD)/rtk $(BUILD)/rtk-tests
+	$(BUILD)/rtk-tests --jobs 2
+
+clean:
+	rm -rf build build-fixed demo.png
+
+-include $(CORE_OBJ:.o=.d) $(PLATFORM_OBJ:.o=.d) $(TEST_OBJ:.o=.d) $(BUILD)/platform/main.d

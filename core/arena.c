@@ -1,0 +1,43 @@
+/* Bump allocator; see arena.h. */
+#include "arena.h"
+
+void rt_arena_init(rt_arena *a, void *memory, size_t capacity)
+{
+    a->base = memory;
+    a->capacity = capacity;
+    a->used = 0;
+    a->high_water = 0;
+    a->wanted = 0;
+}
+
+void *rt_arena_alloc(rt_arena *a, size_t size)
+{
+    size_t start = (a->used + 15u) & ~(size_t)15u;
+    if (start < a->used || size > SIZE_MAX - start || start + size > a->capacity) {
+        a->wanted = size > SIZE_MAX - start ? SIZE_MAX : start + size;
+        return NULL;
+    }
+    a->used = start + size;
+    if (a->used > a->high_water) a->high_water = a->used;
+    return a->base + start;
+}
+
+void *rt_arena_array(rt_arena *a, size_t count, size_t size)
+{
+    if (size != 0 && count > SIZE_MAX / size) {
+        a->wanted = SIZE_MAX;
+        return NULL;
+    }
+    uint8_t *p = rt_arena_alloc(a, count * size);
+    if (p) {
+        for (size_t i = 0; i < count * size; i++) p[i] = 0;
+    }
+    return p;
+}
+
+size_t rt_arena_mark(const rt_arena *a) { return a->used; }
+
+void rt_arena_reset(rt_arena *a, size_t mark)
+{
+    if (mark <= a->used) a->used = mark;
+}

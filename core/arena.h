@@ -1,0 +1,29 @@
+/* Bump allocator over caller-owned memory: the kernel's only source of memory.
+ * One lifetime per arena; nothing is freed individually. */
+#ifndef RT_ARENA_H
+#define RT_ARENA_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+typedef struct {
+    uint8_t *base;
+    size_t capacity;
+    size_t used;
+    size_t high_water;
+    /* Set when an allocation fails: the total bytes that allocation would have needed. */
+    size_t wanted;
+} rt_arena;
+
+void rt_arena_init(rt_arena *a, void *memory, size_t capacity);
+/* size bytes aligned to 16, or NULL when the arena is full (a->wanted is set). */
+void *rt_arena_alloc(rt_arena *a, size_t size);
+/* count * size bytes, zeroed; NULL on overflow of the product or when full. */
+void *rt_arena_array(rt_arena *a, size_t count, size_t size);
+/* Marks for scratch use: everything allocated after the mark is released by reset. */
+size_t rt_arena_mark(const rt_arena *a);
+void rt_arena_reset(rt_arena *a, size_t mark);
+
+#define RT_NEW_ARRAY(arena, type, count) ((type *)rt_arena_array((arena), (count), sizeof(type)))
+
+#endif

@@ -1,0 +1,49 @@
+/* rt_real as IEEE-754 binary64. Determinism rests on: no FMA contraction
+ * (-ffp-contract=off), SSE2/NEON arithmetic (no x87 excess precision), and sqrt
+ * being correctly rounded by IEEE-754. Included only through real.h. */
+#ifndef RT_REAL_DOUBLE_H
+#define RT_REAL_DOUBLE_H
+
+typedef double rt_real;
+
+#define RT_REAL_NAME "double"
+/* A compile-time constant from a decimal literal. */
+#define RT_C(x) ((rt_real)(x))
+#define RT_ZERO RT_C(0.0)
+#define RT_ONE RT_C(1.0)
+#define RT_PI RT_C(3.14159265358979323846)
+/* Largest finite value: "no hit yet" distances start here. */
+#define RT_REAL_MAX RT_C(1.7976931348623157e308)
+
+static inline rt_real rt_add(rt_real a, rt_real b) { return a + b; }
+static inline rt_real rt_sub(rt_real a, rt_real b) { return a - b; }
+static inline rt_real rt_mul(rt_real a, rt_real b) { return a * b; }
+static inline rt_real rt_div(rt_real a, rt_real b) { return a / b; }
+static inline rt_real rt_neg(rt_real a) { return -a; }
+static inline rt_real rt_from_int(int64_t i) { return (rt_real)i; }
+static inline rt_real rt_sqrt(rt_real a) { return a > 0.0 ? __builtin_sqrt(a) : 0.0; }
+
+/* Largest integer <= a, saturated to the int32 range. */
+static inline int32_t rt_floor_int(rt_real a)
+{
+    if (!(a > -2147483648.0)) return INT32_MIN; /* also NaN */
+    if (a >= 2147483647.0) return INT32_MAX;
+    int32_t i = (int32_t)a;
+    return (rt_real)i > a ? i - 1 : i;
+}
+
+/* True when a is neither NaN nor infinite. */
+static inline bool rt_is_finite(rt_real a) { return a - a == 0.0; }
+
+/* The sample solution's final quantisation: (uint8)(255.0f * (float)c), c in [0,1]. */
+static inline uint8_t rt_unit_to_byte(rt_real c)
+{
+    float f = (float)c * 255.0f;
+    return (uint8_t)f;
+}
+
+/* Host-side conversion for loaders and tests; never called by the core. */
+static inline rt_real rt_from_double(double d) { return d; }
+static inline double rt_to_double(rt_real a) { return a; }
+
+#endif

@@ -1,0 +1,186 @@
+/* The scene: what the platform loaders describe (rt_scene_desc, plain arrays the
+ * caller owns) and what the kernel renders (rt_scene, built once into an arena by
+ * rt_scene_build and read-only afterwards). */
+#ifndef RT_SCENE_H
+#define RT_SCENE_H
+
+#include "arena.h"
+#include "status.h"
+#include "vec.h"
+
+#define RT_NO_TEXTURE UINT32_MAX
+#define RT_MAX_SUBDIVISION 5
+
+/* ---- Description: filled in by a loader, consumed by rt_scene_build. ---- */
+
+/* One material input: a solid colour, or a texture that replaces it. */
+typedef struct {
+    rt_vec3 color;    /* already quantised to byte/255 by the loader (format §6.2) */
+    uint32_t texture; /* index into textures, or RT_NO_TEXTURE */
+} rt_channel;
+
+typedef struct {
+    rt_channel diffuse, specular, emissive, transmittance;
+    rt_real shininess;
+    rt_real index_of_refraction;
+} rt_material;
+
+typedef struct {
+    uint32_t width, height;
+    const uint8_t *rgb; /* width * height * 3 bytes, row 0 = top of the image */
+    bool bilinear;
+} rt_texture;
+
+/* A triangle mesh in object space. normals and uvs may be NULL. */
+typedef struct {
+    const rt_vec3 *positions;
+    const rt_vec3 *normals;
+    const rt_vec2 *uvs;
+    uint32_t vertex_count;
+    const uint32_t *indices; /* 3 per triangle */
+    uint32_t triangle_count;
+} rt_mesh_desc;
+
+typedef enum { RT_SHAPE_SPHERE, RT_SHAPE_CYLINDER, RT_SHAPE_MESH } rt_shape_kind;
+
+typedef struct {
+    rt_shape_kind kind;
+    rt_affine world;
+    uint32_t material;
+    uint32_t mesh;        /* RT_SHAPE_MESH: index into rt_scene_desc.meshes */
+    uint32_t subdivision; /* RT_SHAPE_MESH: Loop subdivision levels, 0..RT_MAX_SUBDIVISION */
+    uint32_t source;      /* caller's id for the node (reported by the debugger) */
+} rt_object_desc;
+
+typedef enum { RT_LIGHT_POINT, RT_LIGHT_DIRECTIONAL, RT_LIGHT_AREA } rt_light_kind;
+
+typedef struct {
+    rt_light_kind kind;
+    rt_affine world;
+    rt_vec3 color;   /* directional: already multiplied by its Intensity Multiplier */
+    rt_vec3 ambient;
+    rt_real atten_const, atten_linear, atten_quad; /* point and area lights */
+} rt_light_desc;
+
+typedef struct {
+    uint32_t max_depth;
+    uint32_t shadows; /* 0 none, 1 opaque, 2 coloured */
+    bool reflections, refractions;
+    uint32_t samples_per_pixel_index; /* samples = 4^index */
+    uint32_t monte_carlo;             /* 0 off; the Monte Carlo modes are not rendered yet */
+    bool diffuse_reflection, caustics, random_single_branching;
+    rt_real focus_distance, aperture_size;
+} rt_trace_settings;
+
+typedef struct {
+    rt_affine world;
+    rt_real fov_degrees; /* full vertical angle */
+    bool perspective;
+    rt_real ortho_width;
+    uint32_t width, height;
+    rt_trace_settings trace;
+} rt_camera_desc;
+
+typedef struct {
+    const rt_material *materials;
+    uint32_t material_count;
+    const rt_texture *textures;
+    uint32_t texture_count;
+    const rt_mesh_desc *meshes;
+    uint32_t mesh_count;
+    const rt_object_desc *objects;
+    uint32_t object_count;
+    const rt_light_desc *lights;
+    uint32_t light_count;
+    rt_camera_desc camera;
+} rt_scene_desc;
+
+/* ---- Built scene: world space, ready to trace. ---- */
+
+typedef struct {
+    rt_shape_kind kind;
+    uint32_t material;
+    uint32_t source;
+    rt_affine to_world, to_object;
+    rt_mat3 normal_to_world; /* inverse transpose of to_world.linear */
+} rt_object;
+
+typedef struct {
+    uint32_t v[3];   /* indices into rt_scene.positions / normals / uvs */
+    uint32_t object; /* the mesh object it belongs to */
+} rt_triangle;
+
+typedef struct {
+    rt_light_kind kind;
+    rt_vec3 position;  /* point and area lights */
+    rt_vec3 direction; /* directional: unit vector towards the light */
+    rt_vec3 color, ambient;
+    rt_real atten_const, atten_linear, atten_quad;
+} rt_light;
+
+typedef struct {
+    rt_vec3 eye, forward, right, up;
+    rt_real tan_half_fov, aspect;
+    bool perspective;
+    rt_real ortho_width;
+    uint32_t width, height;
+    rt_trace_settings trace;
+} rt_camera;
+
+typedef struct { rt_vec3 lo, hi; } rt_aabb;
+
+/* A BVH node: an inner node's children are nodes[first] and nodes[first + 1];
+ * a leaf covers prim_refs[first .. first + count). */
+typedef struct {
+    rt_aabb bounds;
+    uint32_t first;
+    uint32_t count; /* 0 for inner nodes */
+} rt_bvh_node;
+
+typedef struct {
+    rt_bvh_node *nodes;
+    uint32_t node_count;
+    uint32_t *prim_refs;
+    uint32_t depth;
+} rt_bvh;
+
+typedef struct {
+    rt_material *materials;
+    uint32_t material_count;
+    rt_texture *textures;
+    uint32_t texture_count;
+    rt_object *objects;
+    uint32_t object_count;
+    rt_light *lights;
+    uint32_t light_count;
+    /* All mesh triangles, in world space. */
+    rt_vec3 *positions;
+    rt_vec3 *normals; /* world-space vertex normals, not renormalised */
+    rt_vec2 *uvs;
+    uint32_t vertex_count;
+    rt_triangle *triangles;
+    uint32_t triangle_count;
+    /* Primitive references: 0 .. triangle_count-1 are triangles, then one per
+     * sphere/cylinder object (see rt_prim_*). */
+    uint32_t *quadric_objects;
+    uint32_t prim_count;
+    rt_bvh bvh;
+    rt_camera camera;
+} rt_scene;
+
+/* What went wrong in rt_scene_build, for the platform to report. */
+typedef struct {
+    rt_status status;
+    const char *what;  /* a short phrase: "transform is singular", ... */
+    uint32_t object;   /* the offending object (or light) index, or UINT32_MAX */
+} rt_build_error;
+
+/* Copies desc into the arena, transforms meshes to world space, subdivides, builds the BVH. */
+rt_status rt_scene_build(const rt_scene_desc *desc, rt_arena *arena, rt_scene *out, rt_build_error *err);
+
+/* The built-in meshes of the format: the Cube (24 vertices, 12 triangles) and the
+ * Plane's unit square in XY. The arrays are constant tables. */
+rt_mesh_desc rt_mesh_cube(void);
+rt_mesh_desc rt_mesh_square(void);
+
+#endif

@@ -1,0 +1,105 @@
+/* Matrix operations that are too large to inline. */
+#include "vec.h"
+
+rt_mat3 rt_mat3_mul(const rt_mat3 *a, const rt_mat3 *b)
+{
+    rt_mat3 r;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            r.m[i][j] = rt_add(rt_add(rt_mul(a->m[i][0], b->m[0][j]), rt_mul(a->m[i][1], b->m[1][j])),
+                               rt_mul(a->m[i][2], b->m[2][j]));
+    return r;
+}
+
+rt_mat3 rt_mat3_transpose(const rt_mat3 *a)
+{
+    rt_mat3 r;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) r.m[i][j] = a->m[j][i];
+    return r;
+}
+
+static rt_real cofactor(const rt_mat3 *a, int r0, int r1, int c0, int c1)
+{
+    return rt_sub(rt_mul(a->m[r0][c0], a->m[r1][c1]), rt_mul(a->m[r0][c1], a->m[r1][c0]));
+}
+
+bool rt_mat3_inverse(const rt_mat3 *a, rt_mat3 *out)
+{
+    /* Adjugate over determinant; cofactor(i, j) uses the rows and columns other than i and j. */
+    rt_mat3 adj;
+    adj.m[0][0] = cofactor(a, 1, 2, 1, 2);
+    adj.m[0][1] = rt_neg(cofactor(a, 0, 2, 1, 2));
+    adj.m[0][2] = cofactor(a, 0, 1, 1, 2);
+    adj.m[1][0] = rt_neg(cofactor(a, 1, 2, 0, 2));
+    adj.m[1][1] = cofactor(a, 0, 2, 0, 2);
+    adj.m[1][2] = rt_neg(cofactor(a, 0, 1, 0, 2));
+    adj.m[2][0] = cofactor(a, 1, 2, 0, 1);
+    adj.m[2][1] = rt_neg(cofactor(a, 0, 2, 0, 1));
+    adj.m[2][2] = cofactor(a, 0, 1, 0, 1);
+    rt_real det = rt_add(rt_add(rt_mul(a->m[0][0], adj.m[0][0]), rt_mul(a->m[0][1], adj.m[1][0])),
+                         rt_mul(a->m[0][2], adj.m[2][0]));
+    if (det == RT_ZERO || !rt_is_finite(det)) return false;
+    rt_real inv_det = rt_div(RT_ONE, det);
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            rt_real v = rt_mul(adj.m[i][j], inv_det);
+            if (!rt_is_finite(v)) return false;
+            out->m[i][j] = v;
+        }
+    return true;
+}
+
+rt_affine rt_affine_identity(void)
+{
+    rt_affine r = {{{{RT_ONE, RT_ZERO, RT_ZERO}, {RT_ZERO, RT_ONE, RT_ZERO}, {RT_ZERO, RT_ZERO, RT_ONE}}},
+                   {RT_ZERO, RT_ZERO, RT_ZERO}};
+    return r;
+}
+
+rt_affine rt_affine_mul(const rt_affine *a, const rt_affine *b)
+{
+    rt_affine r;
+    r.linear = rt_mat3_mul(&a->linear, &b->linear);
+    r.translation = rt_affine_point(a, b->translation);
+    return r;
+}
+
+bool rt_affine_inverse(const rt_affine *a, rt_affine *out)
+{
+    rt_mat3 inv;
+    if (!rt_mat3_inverse(&a->linear, &inv)) return false;
+    out->linear = inv;
+    out->translation = rt_v3_neg(rt_mat3_apply(&inv, a->translation));
+    return true;
+}
+
+static rt_mat3 rotation_about(int axis, rt_real degrees)
+{
+    rt_real rad = rt_mul(degrees, rt_div(RT_PI, rt_from_int(180)));
+    rt_real c = rt_cos(rad), s = rt_sin(rad);
+    int i = (axis + 1) % 3, j = (axis + 2) % 3;
+    rt_mat3 r = rt_affine_identity().linear;
+    r.m[i][i] = c;
+    r.m[i][j] = rt_neg(s);
+    r.m[j][i] = s;
+    r.m[j][j] = c;
+    return r;
+}
+
+rt_affine rt_affine_trs(rt_vec3 translation, rt_vec3 rotation_degrees, rt_vec3 scale)
+{
+    rt_mat3 rx = rotation_about(0, rotation_degrees.x);
+    rt_mat3 ry = rotation_about(1, rotation_degrees.y);
+    rt_mat3 rz = rotation_about(2, rotation_degrees.z);
+    rt_mat3 rxy = rt_mat3_mul(&rx, &ry);
+    rt_mat3 rot = rt_mat3_mul(&rxy, &rz);
+    rt_affine r;
+    for (int i = 0; i < 3; i++) {
+        r.linear.m[i][0] = rt_mul(rot.m[i][0], scale.x);
+        r.linear.m[i][1] = rt_mul(rot.m[i][1], scale.y);
+        r.linear.m[i][2] = rt_mul(rot.m[i][2], scale.z);
+    }
+    r.translation = translation;
+    return r;
+}

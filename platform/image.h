@@ -1,0 +1,26 @@
+/* Image files: PNG (libspng) and binary PPM, read to and written from 8-bit RGB. */
+#ifndef RT_IMAGE_H
+#define RT_IMAGE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+typedef struct {
+    uint32_t width, height;
+    uint8_t *rgb; /* width * height * 3, row 0 = top; malloc'd, released by rt_image_free */
+} rt_image;
+
+/* Reads a PNG (any bit depth / colour type, converted to 8-bit RGB, alpha dropped)
+ * or a P6 PPM (maxval 255), chosen by the file's magic bytes, not its name.
+ * On failure: false, and one line in err naming the file and what was wrong. */
+bool rt_image_read(const char *path, rt_image *out, char *err, size_t err_size);
+/* Writes PNG when path ends in .png, else P6 PPM; atomically (temp file + rename):
+ * on failure nothing is left at path. */
+bool rt_image_write(const char *path, const rt_image *img, char *err, size_t err_size);
+void rt_image_free(rt_image *img);
+
+/* Writes size bytes to path via a temporary file in the same folder and rename(2). */
+bool rt_write_file_atomic(const char *path, const void *data, size_t size, char *err, size_t err_size);
+
+#endif
