@@ -26,7 +26,7 @@ LDLIBS := $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lyaml -lspng) -
 
 DEB_PACKAGES := build-essential pkg-config libyaml-dev libspng-dev libcriterion-dev libcglm-dev
 
-CORE_SRC := $(filter-out core/real_%.c,$(wildcard core/*.c)) core/real_$(RT_REAL).c
+CORE_SRC := $(filter-out core/real_%.c,$(wildcard core/*.c)) $(wildcard core/real_$(RT_REAL)*.c)
 PLATFORM_SRC := $(filter-out platform/main.c,$(wildcard platform/*.c))
 TEST_SRC := $(wildcard tests/*.c)
 

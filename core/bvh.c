@@ -1,0 +1,285 @@
+/* Binned-SAH BVH build and traversal; see bvh.h. */
+#include "bvh.h"
+
+#define BIN_COUNT 16
+#define LEAF_MAX 4
+
+static rt_aabb aabb_empty(void)
+{
+    rt_aabb b = {{RT_REAL_MAX, RT_REAL_MAX, RT_REAL_MAX}, {rt_neg(RT_REAL_MAX), rt_neg(RT_REAL_MAX), rt_neg(RT_REAL_MAX)}};
+    return b;
+}
+
+static rt_aabb aabb_union(rt_aabb a, rt_aabb b)
+{
+    rt_aabb r = {rt_v3_min(a.lo, b.lo), rt_v3_max(a.hi, b.hi)};
+    return r;
+}
+
+static rt_aabb aabb_add_point(rt_aabb a, rt_vec3 p)
+{
+    rt_aabb r = {rt_v3_min(a.lo, p), rt_v3_max(a.hi, p)};
+    return r;
+}
+
+/* Half the surface area: all the SAH needs. */
+static rt_real aabb_half_area(rt_aabb b)
+{
+    if (b.lo.x > b.hi.x) return RT_ZERO;
+    rt_vec3 e = rt_v3_sub(b.hi, b.lo);
+    return rt_add(rt_add(rt_mul(e.x, e.y), rt_mul(e.y, e.z)), rt_mul(e.z, e.x));
+}
+
+/* Widens a box by a hair so that slab-test rounding never culls a primitive's true hit. */
+static rt_aabb aabb_pad(rt_aabb b)
+{
+    rt_vec3 extent = rt_v3_max(rt_v3(rt_abs(b.lo.x), rt_abs(b.lo.y), rt_abs(b.lo.z)),
+                               rt_v3(rt_abs(b.hi.x), rt_abs(b.hi.y), rt_abs(b.hi.z)));
+    rt_real m = rt_max(rt_max(extent.x, extent.y), extent.z);
+    rt_real pad = rt_add(rt_mul(m, RT_C(1e-9)), RT_C(1e-9));
+    rt_vec3 p = rt_v3(pad, pad, pad);
+    rt_aabb r = {rt_v3_sub(b.lo, p), rt_v3_add(b.hi, p)};
+    return r;
+}
+
+rt_aabb rt_prim_bounds(const rt_scene *scene, uint32_t prim)
+{
+    if (prim < scene->triangle_count) {
+        const rt_triangle *tri = &scene->triangles[prim];
+        rt_aabb b = aabb_empty();
+        for (int k = 0; k < 3; k++) b = aabb_add_point(b, scene->positions[tri->v[k]]);
+        return aabb_pad(b);
+    }
+    /* A quadric fills at most its object-space cube [-0.5, 0.5]^3. */
+    const rt_object *obj = &scene->objects[scene->quadric_objects[prim - scene->triangle_count]];
+    const rt_mat3 *m = &obj->to_world.linear;
+    rt_vec3 half = rt_v3(rt_mul(RT_C(0.5), rt_add(rt_add(rt_abs(m->m[0][0]), rt_abs(m->m[0][1])), rt_abs(m->m[0][2]))),
+                         rt_mul(RT_C(0.5), rt_add(rt_add(rt_abs(m->m[1][0]), rt_abs(m->m[1][1])), rt_abs(m->m[1][2]))),
+                         rt_mul(RT_C(0.5), rt_add(rt_add(rt_abs(m->m[2][0]), rt_abs(m->m[2][1])), rt_abs(m->m[2][2]))));
+    rt_aabb b = {rt_v3_sub(obj->to_world.translation, half), rt_v3_add(obj->to_world.translation, half)};
+    return aabb_pad(b);
+}
+
+bool rt_prim_intersect(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs, rt_prim_hit *hit)
+{
+    if (prim < scene->triangle_count) {
+        const rt_triangle *tri = &scene->triangles[prim];
+        return rt_intersect_triangle(rs, scene->positions[tri->v[0]], scene->positions[tri->v[1]],
+                                     scene->positions[tri->v[2]], hit);
+    }
+    const rt_object *obj = &scene->objects[scene->quadric_objects[prim - scene->triangle_count]];
+    rt_vec3 o = rt_affine_point(&obj->to_object, rs->ray.origin);
+    rt_vec3 d = rt_affine_vector(&obj->to_object, rs->ray.direction);
+    if (obj->kind == RT_SHAPE_SPHERE) return rt_intersect_sphere(o, d, rs->ray.t_min, rs->ray.t_max, hit);
+    return rt_intersect_cylinder(o, d, rs->ray.t_min, rs->ray.t_max, hit);
+}
+
+/* ---- Build ---- */
+
+typedef struct {
+    rt_aabb *bounds;
+    rt_vec3 *centroids;
+    uint32_t *refs;
+} build_input;
+
+typedef struct {
+    uint32_t node, first, count, depth;
+} build_task;
+
+static rt_real centroid_axis(const build_input *in, uint32_t ref, int axis)
+{
+    return rt_v3_get(in->centroids[ref], axis);
+}
+
+static int bin_of(rt_real c, rt_real lo, rt_real scale)
+{
+    int32_t b = rt_floor_int(rt_mul(rt_sub(c, lo), scale));
+    return b < 0 ? 0 : b >= BIN_COUNT ? BIN_COUNT - 1 : (int)b;
+}
+
+/* Finds the cheapest binned split of refs[first..first+count); false if a leaf is cheaper. */
+static bool choose_split(const build_input *in, uint32_t first, uint32_t count, rt_aabb node_bounds,
+                         int *axis_out, rt_real *pos_out)
+{
+    rt_aabb cb = aabb_empty();
+    for (uint32_t i = first; i < first + count; i++) cb = aabb_add_point(cb, in->centroids[in->refs[i]]);
+    rt_real best_cost = rt_mul(rt_from_int(count), aabb_half_area(node_bounds)); /* leaf cost */
+    bool found = false;
+    for (int axis = 0; axis < 3; axis++) {
+        rt_real lo = rt_v3_get(cb.lo, axis), hi = rt_v3_get(cb.hi, axis);
+        if (!(hi > lo)) continue;
+        rt_real scale = rt_div(rt_from_int(BIN_COUNT), rt_sub(hi, lo));
+        rt_aabb bin_box[BIN_COUNT];
+        uint32_t bin_n[BIN_COUNT];
+        for (int b = 0; b < BIN_COUNT; b++) { bin_box[b] = aabb_empty(); bin_n[b] = 0; }
+        for (uint32_t i = first; i < first + count; i++) {
+            uint32_t ref = in->refs[i];
+            int b = bin_of(centroid_axis(in, ref, axis), lo, scale);
+            bin_box[b] = aabb_union(bin_box[b], in->bounds[ref]);
+            bin_n[b]++;
+        }
+        /* Sweep from the right to get suffix areas, then from the left to price each plane. */
+        rt_real right_area[BIN_COUNT];
+        uint32_t right_n[BIN_COUNT];
+        rt_aabb acc = aabb_empty();
+        uint32_t n = 0;
+        for (int b = BIN_COUNT - 1; b > 0; b--) {
+            acc = aabb_union(acc, bin_box[b]);
+            n += bin_n[b];
+            right_area[b] = aabb_half_area(acc);
+            right_n[b] = n;
+        }
+        acc = aabb_empty();
+        n = 0;
+        for (int b = 0; b < BIN_COUNT - 1; b++) {
+            acc = aabb_union(acc, bin_box[b]);
+            n += bin_n[b];
+            if (n == 0 || right_n[b + 1] == 0) continue;
+            rt_real cost = rt_add(rt_mul(rt_from_int(n), aabb_half_area(acc)),
+                                  rt_mul(rt_from_int(right_n[b + 1]), right_area[b + 1]));
+            if (cost < best_cost) {
+                best_cost = cost;
+                found = true;
+                *axis_out = axis;
+                /* Split by bin index (recomputed in partition), encoded as a position. */
+                *pos_out = rt_from_int(b);
+            }
+        }
+    }
+    return found;
+}
+
+/* Moves refs whose centroid falls in bins <= split_bin to the front; returns their count. */
+static uint32_t partition(build_input *in, uint32_t first, uint32_t count, int axis, int split_bin)
+{
+    rt_aabb cb = aabb_empty();
+    for (uint32_t i = first; i < first + count; i++) cb = aabb_add_point(cb, in->centroids[in->refs[i]]);
+    rt_real lo = rt_v3_get(cb.lo, axis), hi = rt_v3_get(cb.hi, axis);
+    rt_real scale = rt_div(rt_from_int(BIN_COUNT), rt_sub(hi, lo));
+    uint32_t i = first, j = first + count;
+    while (i < j) {
+        if (bin_of(centroid_axis(in, in->refs[i], axis), lo, scale) <= split_bin) {
+            i++;
+        } else {
+            j--;
+            uint32_t s = in->refs[i];
+            in->refs[i] = in->refs[j];
+            in->refs[j] = s;
+        }
+    }
+    return i - first;
+}
+
+rt_status rt_bvh_build(rt_scene *scene, rt_arena *arena)
+{
+    uint32_t n = scene->prim_count;
+    rt_bvh *bvh = &scene->bvh;
+    bvh->nodes = RT_NEW_ARRAY(arena, rt_bvh_node, n > 0 ? 2 * (size_t)n - 1 : 1);
+    bvh->prim_refs = RT_NEW_ARRAY(arena, uint32_t, n > 0 ? n : 1);
+    if (!bvh->nodes || !bvh->prim_refs) return RT_ERR_NOMEM;
+    size_t mark = rt_arena_mark(arena);
+    build_input in;
+    in.bounds = RT_NEW_ARRAY(arena, rt_aabb, n);
+    in.centroids = RT_NEW_ARRAY(arena, rt_vec3, n);
+    build_task *stack = RT_NEW_ARRAY(arena, build_task, RT_BVH_MAX_DEPTH + 2);
+    if (n > 0 && (!in.bounds || !in.centroids || !stack)) return RT_ERR_NOMEM;
+    in.refs = bvh->prim_refs;
+    for (uint32_t i = 0; i < n; i++) {
+        in.bounds[i] = rt_prim_bounds(scene, i);
+        in.centroids[i] = rt_v3_scale(rt_v3_add(in.bounds[i].lo, in.bounds[i].hi), RT_C(0.5));
+        in.refs[i] = i;
+    }
+    bvh->node_count = 1;
+    bvh->depth = 1;
+    bvh->nodes[0].bounds = aabb_empty();
+    bvh->nodes[0].first = 0;
+    bvh->nodes[0].count = 0;
+    uint32_t top = 0;
+    if (n > 0) stack[top++] = (build_task){0, 0, n, 1};
+    while (top > 0) {
+        build_task task = stack[--top];
+        rt_bvh_node *node = &bvh->nodes[task.node];
+        rt_aabb bounds = aabb_empty();
+        for (uint32_t i = task.first; i < task.first + task.count; i++) bounds = aabb_union(bounds, in.bounds[in.refs[i]]);
+        node->bounds = bounds;
+        node->first = task.first;
+        node->count = task.count;
+        if (task.depth > bvh->depth) bvh->depth = task.depth;
+        int axis = 0;
+        rt_real split = RT_ZERO;
+        if (task.count <= LEAF_MAX || task.depth >= RT_BVH_MAX_DEPTH ||
+            !choose_split(&in, task.first, task.count, bounds, &axis, &split))
+            continue;
+        uint32_t left_n = partition(&in, task.first, task.count, axis, rt_floor_int(split));
+        uint32_t left = bvh->node_count;
+        bvh->node_count += 2;
+        node->first = left;
+        node->count = 0;
+        /* Push right first so the left subtree is built next (depth-first, bounded stack). */
+        stack[top++] = (build_task){left + 1, task.first + left_n, task.count - left_n, task.depth + 1};
+        stack[top++] = (build_task){left, task.first, left_n, task.depth + 1};
+    }
+    rt_arena_reset(arena, mark);
+    return RT_OK;
+}
+
+/* ---- Queries ---- */
+
+static void consider(const rt_scene *scene, uint32_t prim, rt_ray_setup *rs, rt_scene_hit *best, bool *found)
+{
+    rt_prim_hit h;
+    if (!rt_prim_intersect(scene, prim, rs, &h)) return;
+    if (*found && (h.t > best->hit.t || (h.t == best->hit.t && prim > best->prim))) return;
+    best->hit = h;
+    best->prim = prim;
+    *found = true;
+}
+
+static bool nearest_brute(const rt_scene *scene, rt_ray_setup *rs, rt_scene_hit *out)
+{
+    bool found = false;
+    for (uint32_t p = 0; p < scene->prim_count; p++) consider(scene, p, rs, out, &found);
+    return found;
+}
+
+static bool nearest_bvh(const rt_scene *scene, rt_ray_setup *rs, rt_scene_hit *out)
+{
+    const rt_bvh *bvh = &scene->bvh;
+    bool found = false;
+    uint32_t stack[RT_BVH_MAX_DEPTH + 2];
+    uint32_t top = 0;
+    rt_real t_enter;
+    if (scene->prim_count == 0 || !rt_intersect_aabb(rs, &bvh->nodes[0].bounds, rs->ray.t_max, &t_enter)) return false;
+    stack[top++] = 0;
+    while (top > 0) {
+        const rt_bvh_node *node = &bvh->nodes[stack[--top]];
+        if (node->count > 0) {
+            for (uint32_t i = node->first; i < node->first + node->count; i++)
+                consider(scene, bvh->prim_refs[i], rs, out, &found);
+            continue;
+        }
+        /* Boxes are tested against the best t itself (not below it) so ties survive. */
+        rt_real limit = found ? out->hit.t : rs->ray.t_max;
+        rt_real ta, tb;
+        bool hit_a = rt_intersect_aabb(rs, &bvh->nodes[node->first].bounds, limit, &ta);
+        bool hit_b = rt_intersect_aabb(rs, &bvh->nodes[node->first + 1].bounds, limit, &tb);
+        if (hit_a && hit_b) {
+            /* Visit the nearer child first: push it last. */
+            uint32_t near = ta <= tb ? node->first : node->first + 1;
+            stack[top++] = near == node->first ? node->first + 1 : node->first;
+            stack[top++] = near;
+        } else if (hit_a) {
+            stack[top++] = node->first;
+        } else if (hit_b) {
+            stack[top++] = node->first + 1;
+        }
+    }
+    return found;
+}
+
+bool rt_scene_nearest(const rt_scene *scene, const rt_ray_setup *rs, bool use_bvh, rt_scene_hit *out)
+{
+    /* The intersectors read t_max from the setup; keep the caller's copy unchanged. */
+    rt_ray_setup local = *rs;
+    return use_bvh ? nearest_bvh(scene, &local, out) : nearest_brute(scene, &local, out);
+}

@@ -1,0 +1,29 @@
+/* Bounding volume hierarchy over a scene's primitives (binned SAH), and the scene
+ * queries built on it. Nearest-hit ties are broken by the lower primitive reference,
+ * so a query returns the same primitive with or without the BVH. */
+#ifndef RT_BVH_H
+#define RT_BVH_H
+
+#include "intersect.h"
+#include "scene.h"
+
+/* Deepest tree the builder makes; traversal stacks are sized by it. */
+#define RT_BVH_MAX_DEPTH 64
+
+typedef struct {
+    rt_prim_hit hit;
+    uint32_t prim; /* primitive reference (see rt_scene) */
+} rt_scene_hit;
+
+/* Builds scene->bvh over scene->prim_count primitives. Scratch comes from the arena too. */
+rt_status rt_bvh_build(rt_scene *scene, rt_arena *arena);
+
+/* The world-space bounds of primitive `prim`. */
+rt_aabb rt_prim_bounds(const rt_scene *scene, uint32_t prim);
+/* Tests one primitive against the ray. */
+bool rt_prim_intersect(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs, rt_prim_hit *hit);
+
+/* Nearest hit in (t_min, t_max); use_bvh = false tests every primitive (for checking). */
+bool rt_scene_nearest(const rt_scene *scene, const rt_ray_setup *rs, bool use_bvh, rt_scene_hit *out);
+
+#endif

@@ -1,0 +1,158 @@
+/* Ray-primitive intersection tests; see intersect.h. */
+#include "intersect.h"
+
+rt_ray_setup rt_ray_prepare(rt_ray ray)
+{
+    rt_ray_setup rs;
+    rs.ray = ray;
+    rt_vec3 d = ray.direction;
+    rt_real ax = rt_abs(d.x), ay = rt_abs(d.y), az = rt_abs(d.z);
+    rs.kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
+    rs.kx = (rs.kz + 1) % 3;
+    rs.ky = (rs.kx + 1) % 3;
+    rt_real dz = rt_v3_get(d, rs.kz);
+    if (dz < RT_ZERO) { /* keep the triangle winding test's orientation */
+        int swap = rs.kx;
+        rs.kx = rs.ky;
+        rs.ky = swap;
+    }
+    rs.sx = rt_div(rt_v3_get(d, rs.kx), dz);
+    rs.sy = rt_div(rt_v3_get(d, rs.ky), dz);
+    rs.sz = rt_div(RT_ONE, dz);
+    rt_real inv[3];
+    for (int k = 0; k < 3; k++) {
+        rt_real c = rt_v3_get(d, k);
+        inv[k] = c != RT_ZERO ? rt_div(RT_ONE, c) : RT_REAL_MAX;
+    }
+    rs.inv_direction = rt_v3(inv[0], inv[1], inv[2]);
+    return rs;
+}
+
+/* Smallest root of a t^2 + b t + c in (t_min, t_max), using the cancellation-free form. */
+static bool nearest_root(rt_real a, rt_real b, rt_real c, rt_real t_min, rt_real t_max, rt_real *t)
+{
+    if (a == RT_ZERO) return false;
+    rt_real disc = rt_sub(rt_mul(b, b), rt_mul(rt_mul(RT_C(4.0), a), c));
+    if (disc < RT_ZERO) return false;
+    rt_real root = rt_sqrt(disc);
+    rt_real q = rt_mul(RT_C(-0.5), b < RT_ZERO ? rt_sub(b, root) : rt_add(b, root));
+    if (q == RT_ZERO) return false;
+    rt_real t0 = rt_div(q, a), t1 = rt_div(c, q);
+    if (t0 > t1) {
+        rt_real s = t0;
+        t0 = t1;
+        t1 = s;
+    }
+    if (t0 > t_min && t0 < t_max) { *t = t0; return true; }
+    if (t1 > t_min && t1 < t_max) { *t = t1; return true; }
+    return false;
+}
+
+bool rt_intersect_sphere(rt_vec3 o, rt_vec3 d, rt_real t_min, rt_real t_max, rt_prim_hit *hit)
+{
+    rt_real a = rt_v3_dot(d, d);
+    rt_real b = rt_mul(RT_C(2.0), rt_v3_dot(o, d));
+    rt_real c = rt_sub(rt_v3_dot(o, o), RT_C(0.25));
+    rt_real t;
+    if (!nearest_root(a, b, c, t_min, t_max, &t)) return false;
+    hit->t = t;
+    hit->b1 = hit->b2 = RT_ZERO;
+    hit->part = RT_PART_SURFACE;
+    return true;
+}
+
+bool rt_intersect_cylinder(rt_vec3 o, rt_vec3 d, rt_real t_min, rt_real t_max, rt_prim_hit *hit)
+{
+    bool found = false;
+    rt_real best = t_max;
+    /* The side: x^2 + z^2 = 0.25 with |y| <= 0.5. Both roots matter: the near one may
+     * lie beyond a cap while the far one is on the body. */
+    rt_real a = rt_add(rt_mul(d.x, d.x), rt_mul(d.z, d.z));
+    rt_real b = rt_mul(RT_C(2.0), rt_add(rt_mul(o.x, d.x), rt_mul(o.z, d.z)));
+    rt_real c = rt_sub(rt_add(rt_mul(o.x, o.x), rt_mul(o.z, o.z)), RT_C(0.25));
+    rt_real lo = t_min, t;
+    for (int root = 0; root < 2 && nearest_root(a, b, c, lo, best, &t); root++) {
+        rt_real y = rt_add(o.y, rt_mul(t, d.y));
+        if (y >= RT_C(-0.5) && y <= RT_C(0.5)) {
+            best = t;
+            found = true;
+            hit->part = RT_PART_SURFACE;
+            break;
+        }
+        lo = t;
+    }
+    /* The caps: discs at y = -0.5 and y = +0.5. */
+    if (d.y != RT_ZERO) {
+        for (int top = 0; top < 2; top++) {
+            rt_real y = top ? RT_C(0.5) : RT_C(-0.5);
+            t = rt_div(rt_sub(y, o.y), d.y);
+            if (!(t > t_min && t < best)) continue;
+            rt_real x = rt_add(o.x, rt_mul(t, d.x)), z = rt_add(o.z, rt_mul(t, d.z));
+            if (rt_add(rt_mul(x, x), rt_mul(z, z)) <= RT_C(0.25)) {
+                best = t;
+                found = true;
+                hit->part = top ? RT_PART_CAP_TOP : RT_PART_CAP_BOTTOM;
+            }
+        }
+    }
+    if (found) {
+        hit->t = best;
+        hit->b1 = hit->b2 = RT_ZERO;
+    }
+    return found;
+}
+
+bool rt_intersect_triangle(const rt_ray_setup *rs, rt_vec3 a, rt_vec3 b, rt_vec3 c, rt_prim_hit *hit)
+{
+    /* Translate to the ray origin, permute and shear so the ray runs along +z (Woop,
+     * Benthin and Wald's watertight test); the 2D edge functions then decide coverage. */
+    rt_vec3 o = rs->ray.origin;
+    rt_vec3 pa = rt_v3_sub(a, o), pb = rt_v3_sub(b, o), pc = rt_v3_sub(c, o);
+    rt_real az = rt_v3_get(pa, rs->kz), bz = rt_v3_get(pb, rs->kz), cz = rt_v3_get(pc, rs->kz);
+    rt_real ax = rt_sub(rt_v3_get(pa, rs->kx), rt_mul(rs->sx, az));
+    rt_real ay = rt_sub(rt_v3_get(pa, rs->ky), rt_mul(rs->sy, az));
+    rt_real bx = rt_sub(rt_v3_get(pb, rs->kx), rt_mul(rs->sx, bz));
+    rt_real by = rt_sub(rt_v3_get(pb, rs->ky), rt_mul(rs->sy, bz));
+    rt_real cx = rt_sub(rt_v3_get(pc, rs->kx), rt_mul(rs->sx, cz));
+    rt_real cy = rt_sub(rt_v3_get(pc, rs->ky), rt_mul(rs->sy, cz));
+    rt_real u = rt_sub(rt_mul(cx, by), rt_mul(cy, bx));
+    rt_real v = rt_sub(rt_mul(ax, cy), rt_mul(ay, cx));
+    rt_real w = rt_sub(rt_mul(bx, ay), rt_mul(by, ax));
+    if ((u < RT_ZERO || v < RT_ZERO || w < RT_ZERO) && (u > RT_ZERO || v > RT_ZERO || w > RT_ZERO))
+        return false;
+    rt_real det = rt_add(rt_add(u, v), w);
+    if (det == RT_ZERO) return false;
+    rt_real scaled_t = rt_add(rt_add(rt_mul(u, rt_mul(rs->sz, az)), rt_mul(v, rt_mul(rs->sz, bz))),
+                              rt_mul(w, rt_mul(rs->sz, cz)));
+    rt_real t = rt_div(scaled_t, det);
+    if (!(t > rs->ray.t_min && t < rs->ray.t_max)) return false;
+    hit->t = t;
+    hit->b1 = rt_div(v, det);
+    hit->b2 = rt_div(w, det);
+    hit->part = RT_PART_SURFACE;
+    return true;
+}
+
+bool rt_intersect_aabb(const rt_ray_setup *rs, const rt_aabb *box, rt_real t_max, rt_real *t_enter)
+{
+    rt_real t0 = rs->ray.t_min, t1 = t_max;
+    for (int k = 0; k < 3; k++) {
+        rt_real o = rt_v3_get(rs->ray.origin, k), lo = rt_v3_get(box->lo, k), hi = rt_v3_get(box->hi, k);
+        if (rt_v3_get(rs->ray.direction, k) == RT_ZERO) {
+            if (o < lo || o > hi) return false;
+            continue;
+        }
+        rt_real inv = rt_v3_get(rs->inv_direction, k);
+        rt_real ta = rt_mul(rt_sub(lo, o), inv), tb = rt_mul(rt_sub(hi, o), inv);
+        if (ta > tb) {
+            rt_real s = ta;
+            ta = tb;
+            tb = s;
+        }
+        t0 = rt_max(t0, ta);
+        t1 = rt_min(t1, tb);
+        if (t0 > t1) return false;
+    }
+    *t_enter = t0;
+    return true;
+}

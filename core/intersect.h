@@ -1,0 +1,28 @@
+/* Ray-primitive intersection: the sphere and cylinder in object space, triangles in
+ * world space. Each test reports the nearest hit with t_min < t < t_max, or false. */
+#ifndef RT_INTERSECT_H
+#define RT_INTERSECT_H
+
+#include "ray.h"
+#include "scene.h"
+
+/* Which surface of a primitive was hit. */
+typedef enum { RT_PART_SURFACE, RT_PART_CAP_BOTTOM, RT_PART_CAP_TOP } rt_part;
+
+typedef struct {
+    rt_real t;
+    rt_real b1, b2;  /* triangle: barycentric weights of v[1] and v[2] */
+    rt_part part;
+} rt_prim_hit;
+
+/* Unit sphere of radius 0.5 at the origin; origin/direction in object space
+ * (direction not normalised, so t is the caller's world-space parameter). */
+bool rt_intersect_sphere(rt_vec3 origin, rt_vec3 direction, rt_real t_min, rt_real t_max, rt_prim_hit *hit);
+/* Capped cylinder: axis Y, radius 0.5, y in [-0.5, 0.5]; object space as above. */
+bool rt_intersect_cylinder(rt_vec3 origin, rt_vec3 direction, rt_real t_min, rt_real t_max, rt_prim_hit *hit);
+/* Watertight triangle test (edges shared by two triangles are hit by at least one). */
+bool rt_intersect_triangle(const rt_ray_setup *rs, rt_vec3 a, rt_vec3 b, rt_vec3 c, rt_prim_hit *hit);
+/* Slab test; returns the entry distance in *t_enter. */
+bool rt_intersect_aabb(const rt_ray_setup *rs, const rt_aabb *box, rt_real t_max, rt_real *t_enter);
+
+#endif

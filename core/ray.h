@@ -1,0 +1,27 @@
+/* Rays and the per-ray constants the intersectors share. */
+#ifndef RT_RAY_H
+#define RT_RAY_H
+
+#include "vec.h"
+
+/* Hits closer than this along a unit-length ray are ignored, for every kind of ray:
+ * the sample solution's effective epsilon (format §10.4). */
+#define RT_HIT_EPSILON RT_C(1e-3)
+
+typedef struct {
+    rt_vec3 origin;
+    rt_vec3 direction; /* unit length */
+    rt_real t_min, t_max;
+} rt_ray;
+
+/* Per-ray values for the watertight triangle test and the slab test. */
+typedef struct {
+    rt_ray ray;
+    int kx, ky, kz;        /* axes permuted so that |direction[kz]| is largest */
+    rt_real sx, sy, sz;    /* shear constants */
+    rt_vec3 inv_direction; /* 1/direction; RT_REAL_MAX-signed for zero components */
+} rt_ray_setup;
+
+rt_ray_setup rt_ray_prepare(rt_ray ray);
+
+#endif

@@ -1,0 +1,20 @@
+/* Camera rays, pixels and tiles: the kernel's entry point for rendering. */
+#ifndef RT_RENDER_H
+#define RT_RENDER_H
+
+#include "trace.h"
+
+/* The camera ray through image point (x, y) in [0,1]^2, y = 0 at the bottom (format §8). */
+rt_ray rt_camera_ray(const rt_camera *cam, rt_real x, rt_real y);
+
+/* The averaged, unclamped colour of pixel (column, row), row 0 = top of the image. */
+rt_vec3 rt_render_pixel(const rt_tracer *tr, uint32_t column, uint32_t row);
+
+/* Renders columns [x0, x1) of rows [y0, y1) into rgb (width * height * 3 bytes, row 0
+ * at the top), each channel quantised as the sample solution does (format §11.3). */
+void rt_render_region(const rt_tracer *tr, uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1, uint8_t *rgb);
+
+/* One 8-bit channel from an unclamped colour value. */
+uint8_t rt_color_to_byte(rt_real c);
+
+#endif

@@ -1,0 +1,21 @@
+/* What a renderer needs to know about a hit: point, normals, uv and material. */
+#ifndef RT_SURFACE_H
+#define RT_SURFACE_H
+
+#include "bvh.h"
+
+typedef struct {
+    rt_vec3 point;
+    rt_vec3 normal;           /* shading normal as the primitive gives it (unit, not flipped) */
+    rt_vec3 geometric_normal; /* the facet's (or quadric's) true normal (unit, not flipped) */
+    rt_vec2 uv;
+    uint32_t material;
+    uint32_t object;
+} rt_surface;
+
+rt_surface rt_surface_at(const rt_scene *scene, const rt_ray *ray, const rt_scene_hit *hit);
+/* A material channel's value at uv: its solid colour or its texture's texel blend. */
+rt_vec3 rt_channel_at(const rt_scene *scene, const rt_channel *ch, rt_vec2 uv);
+rt_vec3 rt_texture_sample(const rt_texture *tex, rt_vec2 uv);
+
+#endif

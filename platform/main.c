@@ -1,0 +1,36 @@
+/* rtk: the command line. Dispatches to one subcommand per file. */
+#include <stdio.h>
+#include <string.h>
+#include "compare.h"
+#include "exit_codes.h"
+#include "render_cmd.h"
+
+static const char usage[] =
+    "usage: rtk COMMAND [ARGS]\n"
+    "\n"
+    "rtk is a ray tracer for the CSE457 scene format whose renders are bitwise\n"
+    "reproducible.\n"
+    "\n"
+    "commands:\n"
+    "  render SCENE.yaml -o OUT.png   render a scene (rtk render --help)\n"
+    "  compare A B                    compare two images (rtk compare --help)\n"
+    "\n"
+    "Exit codes: 0 ok, 1 compare threshold not met, 2 bad arguments, 3 bad or missing\n"
+    "input file, 4 output not writable, 5 over the memory cap, 6 interrupted.\n";
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        fputs(usage, stderr);
+        return RT_EXIT_USAGE;
+    }
+    const char *cmd = argv[1];
+    if (!strcmp(cmd, "--help") || !strcmp(cmd, "-h") || !strcmp(cmd, "help")) {
+        fputs(usage, stdout);
+        return RT_EXIT_OK;
+    }
+    if (!strcmp(cmd, "render")) return rt_cmd_render(argc - 1, argv + 1);
+    if (!strcmp(cmd, "compare")) return rt_cmd_compare(argc - 1, argv + 1);
+    fprintf(stderr, "rtk: unknown command '%s' (see rtk --help)\n", cmd);
+    return RT_EXIT_USAGE;
+}

@@ -1,0 +1,161 @@
+/* `rtk render`: scene file in, image file (and/or render hash) out. */
+#include "render_cmd.h"
+
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include "cli.h"
+#include "exit_codes.h"
+#include "image.h"
+#include "parallel.h"
+#include "scene_build.h"
+#include "sha256.h"
+
+static volatile int interrupted;
+
+static void on_signal(int sig)
+{
+    (void)sig;
+    interrupted = 1;
+}
+
+static const char usage[] =
+    "usage: rtk render SCENE.yaml [-o OUT.png|OUT.ppm] [options]\n"
+    "\n"
+    "Renders a CSE457 scene file. The output format follows the file name (.png, else\n"
+    "binary PPM); the file is written atomically, or not at all on error.\n"
+    "\n"
+    "  -o, --output FILE   image to write (optional with --hash)\n"
+    "  --width N           override the camera's Render Width (px), 1..16384\n"
+    "  --height N          override the camera's Render Height (px), 1..16384\n"
+    "  --depth N           override Maximum Recursion Depth, 0..64\n"
+    "  --aa N              override Samples Per Pixel: 4^N samples per pixel, N 0..7\n"
+    "  --threads N         worker threads (default: all cores); the image does not depend on it\n"
+    "  --tile N            tile side in pixels (default 32); the image does not depend on it\n"
+    "  --hash              print the render hash (SHA-256 of the P6 PPM bytes) on stdout\n"
+    "  --assets DIR        the folder that contains assets/ (default: found from the scene's path)\n"
+    "  --no-bvh            test every primitive for every ray (slow; the image is identical)\n"
+    "  --max-memory SIZE   cap on scene memory, e.g. 512M or 4G (default 4G)\n"
+    "  --quiet             no progress bar\n"
+    "  --progress          progress bar even when stderr is not a terminal\n"
+    "\n"
+    "Exit codes: 0 ok, 2 bad arguments, 3 bad or missing input file, 4 output not\n"
+    "writable, 5 over the memory cap, 6 interrupted.\n";
+
+typedef struct {
+    const char *scene, *output;
+    rt_build_options build;
+    rt_parallel_options parallel;
+    bool hash, use_bvh, quiet, force_progress;
+} render_args;
+
+static int parse_args(int argc, char **argv, render_args *a)
+{
+    memset(a, 0, sizeof *a);
+    a->build.max_memory = (size_t)4 << 30;
+    a->build.depth = -1;
+    a->build.aa = -1;
+    a->use_bvh = true;
+    for (int i = 1; i < argc; i++) {
+        const char *arg = argv[i];
+        const char *val = i + 1 < argc ? argv[i + 1] : NULL;
+        uint32_t n;
+        if (!strcmp(arg, "--help") || !strcmp(arg, "-h")) {
+            fputs(usage, stdout);
+            exit(RT_EXIT_OK);
+        } else if (!strcmp(arg, "-o") || !strcmp(arg, "--output")) {
+            if (!val) return rt_usage_error("render", "missing file after", arg);
+            a->output = val, i++;
+        } else if (!strcmp(arg, "--width") || !strcmp(arg, "--height")) {
+            if (!rt_parse_u32(val, 1, 16384, &n)) return rt_usage_error("render", "expected 1..16384 after", arg);
+            *(arg[2] == 'w' ? &a->build.width : &a->build.height) = n, i++;
+        } else if (!strcmp(arg, "--depth")) {
+            if (!rt_parse_u32(val, 0, 64, &n)) return rt_usage_error("render", "expected 0..64 after", arg);
+            a->build.depth = (int32_t)n, i++;
+        } else if (!strcmp(arg, "--aa")) {
+            if (!rt_parse_u32(val, 0, 7, &n)) return rt_usage_error("render", "expected 0..7 after", arg);
+            a->build.aa = (int32_t)n, i++;
+        } else if (!strcmp(arg, "--threads")) {
+            if (!rt_parse_u32(val, 1, 1024, &n)) return rt_usage_error("render", "expected 1..1024 after", arg);
+            a->parallel.threads = n, i++;
+        } else if (!strcmp(arg, "--tile")) {
+            if (!rt_parse_u32(val, 1, 4096, &n)) return rt_usage_error("render", "expected 1..4096 after", arg);
+            a->parallel.tile_size = n, i++;
+        } else if (!strcmp(arg, "--assets")) {
+            if (!val) return rt_usage_error("render", "missing folder after", arg);
+            a->build.assets_root = val, i++;
+        } else if (!strcmp(arg, "--max-memory")) {
+            if (!rt_parse_bytes(val, &a->build.max_memory))
+                return rt_usage_error("render", "expected a size such as 512M after", arg);
+            i++;
+        } else if (!strcmp(arg, "--hash")) {
+            a->hash = true;
+        } else if (!strcmp(arg, "--no-bvh")) {
+            a->use_bvh = false;
+        } else if (!strcmp(arg, "--quiet")) {
+            a->quiet = true;
+        } else if (!strcmp(arg, "--progress")) {
+            a->force_progress = true;
+        } else if (arg[0] == '-' && arg[1]) {
+            return rt_usage_error("render", "unknown option", arg);
+        } else if (!a->scene) {
+            a->scene = arg;
+        } else {
+            return rt_usage_error("render", "unexpected argument", arg);
+        }
+    }
+    if (!a->scene) return rt_usage_error("render", "no scene file given", NULL);
+    if (!a->output && !a->hash) return rt_usage_error("render", "nothing to do: give -o FILE and/or --hash", NULL);
+    return RT_EXIT_OK;
+}
+
+static void print_hash(const rt_image *img)
+{
+    uint8_t digest[32];
+    rt_render_hash(img->rgb, img->width, img->height, digest);
+    for (int i = 0; i < 32; i++) printf("%02x", digest[i]);
+    printf("\n");
+}
+
+int rt_cmd_render(int argc, char **argv)
+{
+    render_args a;
+    int rc = parse_args(argc, argv, &a);
+    if (rc != RT_EXIT_OK) return rc;
+    char err[RT_ERR_SIZE];
+    rt_built_scene built;
+    rc = rt_scene_open(a.scene, &a.build, &built, err, sizeof err);
+    if (rc != RT_EXIT_OK) {
+        fprintf(stderr, "rtk render: %s\n", err);
+        return rc;
+    }
+    const rt_camera *cam = &built.scene.camera;
+    rt_image img = {cam->width, cam->height, calloc((size_t)cam->width * cam->height, 3)};
+    if (!img.rgb) {
+        fprintf(stderr, "rtk render: %s: no memory for a %ux%u image\n", a.scene, cam->width, cam->height);
+        rt_scene_close(&built);
+        return RT_EXIT_MEMORY;
+    }
+    rt_tracer tracer = {&built.scene, a.use_bvh};
+    a.parallel.progress = !a.quiet && (a.force_progress || isatty(STDERR_FILENO));
+    a.parallel.cancel = &interrupted;
+    signal(SIGINT, on_signal);
+    signal(SIGTERM, on_signal);
+    bool complete = rt_render_parallel(&tracer, &a.parallel, img.rgb);
+    rt_scene_close(&built);
+    if (!complete) {
+        fprintf(stderr, "rtk render: %s: interrupted; nothing written\n", a.scene);
+        rt_image_free(&img);
+        return RT_EXIT_INTERRUPTED;
+    }
+    rc = RT_EXIT_OK;
+    if (a.output && !rt_image_write(a.output, &img, err, sizeof err)) {
+        fprintf(stderr, "rtk render: %s\n", err);
+        rc = RT_EXIT_OUTPUT;
+    }
+    if (rc == RT_EXIT_OK && a.hash) print_hash(&img);
+    rt_image_free(&img);
+    return rc;
+}

@@ -1,0 +1,66 @@
+/* Load + build with an arena that grows (up to the memory cap) until the scene fits. */
+#include "scene_build.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include "exit_codes.h"
+
+static void apply_overrides(rt_scene_desc *d, const rt_build_options *opt)
+{
+    if (opt->width) d->camera.width = opt->width;
+    if (opt->height) d->camera.height = opt->height;
+    if (opt->depth >= 0) d->camera.trace.max_depth = (uint32_t)opt->depth;
+    if (opt->aa >= 0) d->camera.trace.samples_per_pixel_index = (uint32_t)opt->aa;
+}
+
+static const char *object_name(const rt_loaded_scene *l, uint32_t object)
+{
+    if (object >= l->desc.object_count) return NULL;
+    uint32_t node = l->desc.objects[object].source;
+    return node < l->node_count ? l->node_names[node] : NULL;
+}
+
+int rt_scene_open(const char *path, const rt_build_options *opt, rt_built_scene *out, char *err, size_t err_size)
+{
+    out->memory = NULL;
+    if (!rt_scene_load(path, opt->assets_root, &out->loaded, err, err_size)) return RT_EXIT_INPUT;
+    apply_overrides(&out->loaded.desc, opt);
+    size_t size = (size_t)64 << 20;
+    for (;;) {
+        if (size > opt->max_memory) size = opt->max_memory;
+        out->memory = malloc(size);
+        if (!out->memory) {
+            snprintf(err, err_size, "%s: cannot allocate %zu MiB for the scene", path, size >> 20);
+            rt_scene_unload(&out->loaded);
+            return RT_EXIT_MEMORY;
+        }
+        rt_arena_init(&out->arena, out->memory, size);
+        rt_build_error be;
+        rt_status st = rt_scene_build(&out->loaded.desc, &out->arena, &out->scene, &be);
+        if (st == RT_OK) return RT_EXIT_OK;
+        free(out->memory);
+        out->memory = NULL;
+        if (st == RT_ERR_NOMEM && size < opt->max_memory) {
+            size_t grown = out->arena.wanted > size ? out->arena.wanted : size;
+            size = grown > opt->max_memory / 2 ? opt->max_memory : grown * 2;
+            continue;
+        }
+        const char *name = object_name(&out->loaded, be.object);
+        if (st == RT_ERR_NOMEM)
+            snprintf(err, err_size, "%s: the scene needs more than --max-memory (%zu MiB): %s", path,
+                     opt->max_memory >> 20, be.what);
+        else if (name)
+            snprintf(err, err_size, "%s: node '%s': %s", path, name, be.what);
+        else
+            snprintf(err, err_size, "%s: %s", path, be.what);
+        rt_scene_unload(&out->loaded);
+        return st == RT_ERR_NOMEM ? RT_EXIT_MEMORY : RT_EXIT_INPUT;
+    }
+}
+
+void rt_scene_close(rt_built_scene *b)
+{
+    free(b->memory);
+    b->memory = NULL;
+    rt_scene_unload(&b->loaded);
+}
