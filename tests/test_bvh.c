@@ -1,0 +1,97 @@
+/* The BVH returns exactly what testing every primitive returns (core/bvh.c). */
+#include <criterion/criterion.h>
+#include <stdlib.h>
+#include "bvh.h"
+
+static uint64_t lcg_state;
+static double next_unit(void)
+{
+    lcg_state = lcg_state * 6364136223846793005ull + 1442695040888963407ull;
+    return (double)(lcg_state >> 11) / 9007199254740992.0;
+}
+static double next_range(double lo, double hi) { return lo + (hi - lo) * next_unit(); }
+
+/* A random soup of triangles and spheres; memory from a malloc'd arena. */
+static void random_scene(rt_scene *s, void **memory, uint32_t triangles, uint32_t spheres)
+{
+    size_t size = 64u << 20;
+    *memory = malloc(size);
+    rt_arena arena;
+    rt_arena_init(&arena, *memory, size);
+    static rt_material material;
+    rt_vec3 *pos = malloc(sizeof(rt_vec3) * triangles * 3);
+    uint32_t *idx = malloc(sizeof(uint32_t) * triangles * 3);
+    for (uint32_t i = 0; i < triangles * 3; i++) {
+        idx[i] = i;
+        if (i % 3 == 0) pos[i] = rt_v3(next_range(-10, 10), next_range(-10, 10), next_range(-10, 10));
+        else pos[i] = rt_v3_add(pos[i - i % 3], rt_v3(next_range(-1, 1), next_range(-1, 1), next_range(-1, 1)));
+    }
+    rt_mesh_desc mesh = {pos, NULL, NULL, triangles * 3, idx, triangles};
+    rt_object_desc *objs = calloc(spheres + 1, sizeof *objs);
+    objs[0].kind = RT_SHAPE_MESH;
+    objs[0].world = rt_affine_identity();
+    for (uint32_t i = 1; i <= spheres; i++) {
+        objs[i].kind = RT_SHAPE_SPHERE;
+        rt_real r = next_range(0.2, 2);
+        objs[i].world = rt_affine_trs(rt_v3(next_range(-10, 10), next_range(-10, 10), next_range(-10, 10)),
+                                      rt_v3(0, 0, 0), rt_v3(r, r * 0.5, r));
+    }
+    material.index_of_refraction = 1;
+    rt_scene_desc d = {0};
+    d.materials = &material;
+    d.material_count = 1;
+    d.meshes = &mesh;
+    d.mesh_count = 1;
+    d.objects = objs;
+    d.object_count = spheres + 1;
+    d.camera.world = rt_affine_identity();
+    d.camera.fov_degrees = 50;
+    d.camera.width = d.camera.height = 8;
+    rt_build_error err;
+    cr_assert_eq(rt_scene_build(&d, &arena, s, &err), RT_OK, "%s", err.what);
+    free(pos);
+    free(idx);
+    free(objs);
+}
+
+Test(bvh, nearest_hit_equals_brute_force)
+{
+    lcg_state = 42;
+    rt_scene s;
+    void *memory;
+    random_scene(&s, &memory, 2000, 50);
+    cr_assert_gt(s.bvh.node_count, 100);
+    cr_assert_leq(s.bvh.depth, RT_BVH_MAX_DEPTH);
+    int hits = 0;
+    for (int i = 0; i < 20000; i++) {
+        rt_vec3 o = rt_v3(next_range(-15, 15), next_range(-15, 15), next_range(-15, 15));
+        rt_vec3 d = rt_v3_normalize(rt_v3(next_range(-1, 1), next_range(-1, 1), next_range(-1, 1)));
+        rt_ray r = {o, d, RT_HIT_EPSILON, RT_REAL_MAX};
+        rt_ray_setup rs = rt_ray_prepare(r);
+        rt_scene_hit a, b;
+        bool ha = rt_scene_nearest(&s, &rs, true, &a), hb = rt_scene_nearest(&s, &rs, false, &b);
+        cr_assert_eq(ha, hb, "ray %d: BVH %s, brute force %s", i, ha ? "hit" : "missed", hb ? "hit" : "missed");
+        if (!ha) continue;
+        hits++;
+        cr_assert_eq(a.prim, b.prim, "ray %d: primitive %u vs %u", i, a.prim, b.prim);
+        cr_assert(a.hit.t == b.hit.t);
+    }
+    cr_assert_gt(hits, 2000, "the test scene should be hit often (%d hits)", hits);
+    free(memory);
+}
+
+Test(bvh, every_reference_appears_once)
+{
+    lcg_state = 7;
+    rt_scene s;
+    void *memory;
+    random_scene(&s, &memory, 500, 20);
+    uint8_t *seen = calloc(s.prim_count, 1);
+    for (uint32_t n = 0; n < s.bvh.node_count; n++) {
+        const rt_bvh_node *node = &s.bvh.nodes[n];
+        for (uint32_t i = node->first; node->count && i < node->first + node->count; i++) seen[s.bvh.prim_refs[i]]++;
+    }
+    for (uint32_t p = 0; p < s.prim_count; p++) cr_assert_eq(seen[p], 1, "primitive %u in %u leaves", p, seen[p]);
+    free(seen);
+    free(memory);
+}
