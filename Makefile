@@ -34,7 +34,7 @@ CORE_OBJ := $(CORE_SRC:%.c=$(BUILD)/%.o)
 PLATFORM_OBJ := $(PLATFORM_SRC:%.c=$(BUILD)/%.o)
 TEST_OBJ := $(TEST_SRC:%.c=$(BUILD)/%.o)
 
-.PHONY: all deps demo check test clean bench fuzz
+.PHONY: all deps demo check clean
 all: $(BUILD)/rtk
 
 $(BUILD)/core/%.o: core/%.c
@@ -85,3 +85,7 @@ clean:
 	rm -rf build build-fixed demo.png
 
 -include $(CORE_OBJ:.o=.d) $(PLATFORM_OBJ:.o=.d) $(TEST_OBJ:.o=.d) $(BUILD)/platform/main.d
+
+# Optional fragments: fuzzers (fuzz/fuzz.mk) and benchmarks (bench/bench.mk).
+-include fuzz/fuzz.mk
+-include bench/bench.mk
