@@ -1,0 +1,71 @@
+/* Typed reading of a libyaml document for the scene loader. Every reader takes a map
+ * and a key, fills a default when the key is absent (or null), and reports anything
+ * else that is not the expected kind as one line
+ *   "<file>:<line>:<col>: <key path>: expected <what>, got <what was there>"
+ * where the key path is y->path (the map being read, maintained with push/pop) plus
+ * the key. A NULL map reads as an empty one, so absent sections give defaults. */
+#ifndef RT_YAML_READ_H
+#define RT_YAML_READ_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <yaml.h>
+
+#define RT_YAML_PATH_SIZE 512
+
+typedef struct {
+    yaml_document_t doc;
+    const char *file; /* as it appears in messages */
+    char path[RT_YAML_PATH_SIZE];
+    size_t path_len;
+    char *err;
+    size_t err_size;
+} rt_yaml;
+
+/* Parses the first document of file. Documents in which a node is reached twice
+ * (aliases) are refused, so the document is a tree and walking it is linear. */
+bool rt_yaml_open(rt_yaml *y, const char *file, char *err, size_t err_size);
+void rt_yaml_close(rt_yaml *y);
+yaml_node_t *rt_yaml_root(rt_yaml *y);
+
+/* Appends "/segment" to the key path; rt_yaml_pop(y, mark) restores it. */
+size_t rt_yaml_push(rt_yaml *y, const char *segment);
+void rt_yaml_pop(rt_yaml *y, size_t mark);
+
+/* Writes "<file>:<line>:<col>: <path>[/key]: <message>" (the place is at's start) to
+ * the error buffer; returns false so callers can `return rt_yaml_fail(...)`. */
+bool rt_yaml_fail(rt_yaml *y, const yaml_node_t *at, const char *key, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+/* rt_yaml_fail with "expected <what>, got <a description of at>". */
+bool rt_yaml_expected(rt_yaml *y, const yaml_node_t *at, const char *key, const char *what);
+
+/* The text of a scalar node, NULL for maps and sequences. */
+const char *rt_yaml_text(const yaml_node_t *n);
+/* Number of pairs of a map or items of a sequence; 0 for NULL and scalars. */
+size_t rt_yaml_count(const yaml_node_t *n);
+/* The i-th pair of a map: returns its key node and sets *value (NULL when null). */
+yaml_node_t *rt_yaml_pair(rt_yaml *y, const yaml_node_t *map, size_t i, yaml_node_t **value);
+yaml_node_t *rt_yaml_item(rt_yaml *y, const yaml_node_t *seq, size_t i);
+/* The value of key in map; NULL when map is NULL, the key is absent or its value null. */
+yaml_node_t *rt_yaml_get(rt_yaml *y, const yaml_node_t *map, const char *key);
+
+/* True when n is a map or NULL; otherwise reports "<key>: expected a map". */
+bool rt_yaml_want_map(rt_yaml *y, const yaml_node_t *n, const char *key);
+/* Map and sequence values; *out = NULL when absent and not required. */
+bool rt_yaml_map(rt_yaml *y, const yaml_node_t *map, const char *key, bool required, yaml_node_t **out);
+bool rt_yaml_seq(rt_yaml *y, const yaml_node_t *map, const char *key, bool required, yaml_node_t **out);
+/* A string; def NULL makes the key required. */
+bool rt_yaml_string(rt_yaml *y, const yaml_node_t *map, const char *key, const char *def, const char **out);
+/* true/false (also True/TRUE/False/FALSE). */
+bool rt_yaml_bool(rt_yaml *y, const yaml_node_t *map, const char *key, bool def, bool *out);
+/* A finite number in strtod syntax, whatever the YAML typing. An animated value (a map
+ * with FrameValues) reads as its first frame value. */
+bool rt_yaml_real(rt_yaml *y, const yaml_node_t *map, const char *key, double def, double *out);
+/* A number with an integral value in [lo, hi]. */
+bool rt_yaml_uint(rt_yaml *y, const yaml_node_t *map, const char *key, uint32_t def, uint32_t lo, uint32_t hi,
+                  uint32_t *out);
+/* A choice index: an integral value >= 0, clamped to last. */
+bool rt_yaml_index(rt_yaml *y, const yaml_node_t *map, const char *key, uint32_t def, uint32_t last, uint32_t *out);
+
+#endif
