@@ -37,6 +37,8 @@ static void random_scene(rt_scene *s, void **memory, uint32_t triangles, uint32_
                                       rt_v3(0, 0, 0), rt_v3(r, r * 0.5, r));
     }
     material.index_of_refraction = 1;
+    material.diffuse.texture = material.specular.texture = RT_NO_TEXTURE;
+    material.emissive.texture = material.transmittance.texture = RT_NO_TEXTURE;
     rt_scene_desc d = {0};
     d.materials = &material;
     d.material_count = 1;
