@@ -20,6 +20,13 @@ static bool fail_place(ply_reader *r, const char *what)
                     (unsigned long long)r->element->count, what);
 }
 
+/* For a value that was read but is unusable: binary errors point at its first byte. */
+static bool fail_value(ply_reader *r, const char *what)
+{
+    r->pos = r->value_at;
+    return fail_place(r, what);
+}
+
 /* ---- ASCII: one element per line, values separated by blanks ---- */
 
 static bool is_blank(uint8_t c) { return c == ' ' || c == '\t' || c == '\r'; }
@@ -118,6 +125,7 @@ static bool binary_value(ply_reader *r, ply_type t, double *out)
 
 static bool read_value(ply_reader *r, ply_type t, double *out)
 {
+    r->value_at = r->pos;
     return r->format == PLY_ASCII ? ascii_value(r, t, out) : binary_value(r, t, out);
 }
 
@@ -152,7 +160,7 @@ static bool read_polygon(ply_reader *r, const ply_property *p, uint64_t count)
         if (d < 0 || d >= r->mesh->vertex_count) {
             char what[96];
             snprintf(what, sizeof what, "vertex index %.0f out of range (%u vertices)", d, r->mesh->vertex_count);
-            return fail_place(r, what);
+            return fail_value(r, what);
         }
         uint32_t i = (uint32_t)d;
         if (k >= 2 && !add_triangle(r, first, prev, i)) return false;
@@ -182,7 +190,7 @@ static bool store_scalar(ply_reader *r, ply_role role, double d)
     if (!(d - d == 0)) {
         char what[64];
         snprintf(what, sizeof what, "%s is not a finite number", names[role]);
-        return fail_place(r, what);
+        return fail_value(r, what);
     }
     rt_ply_mesh *m = r->mesh;
     uint32_t v = (uint32_t)r->index;
@@ -208,7 +216,7 @@ static bool read_entry(ply_reader *r, const ply_element *e)
         const ply_property *p = &e->properties[i];
         double d;
         if (!read_value(r, p->is_list ? p->count_type : p->type, &d)) return false;
-        if (p->is_list && d < 0) return fail_place(r, "negative list count");
+        if (p->is_list && d < 0) return fail_value(r, "negative list count");
         bool ok = !p->is_list ? store_scalar(r, p->role, d)
                   : p->role == PLY_INDICES ? read_polygon(r, p, (uint64_t)d)
                                            : skip_list(r, p, (uint64_t)d);

@@ -44,6 +44,7 @@ typedef struct {
     const uint8_t *data;
     size_t size;
     size_t pos;          /* next byte to read */
+    size_t value_at;     /* where the last value read started */
     unsigned long line;  /* 1-based line of pos (header and ASCII body) */
     bool binary_body;    /* errors name a byte offset instead of a line */
     ply_format format;
