@@ -28,26 +28,33 @@ rt_ray rt_camera_ray(const rt_camera *cam, rt_real x, rt_real y)
     return ray;
 }
 
+uint32_t rt_samples_per_pixel(const rt_camera *cam)
+{
+    return 1u << (2 * cam->trace.samples_per_pixel_index);
+}
+
+rt_ray rt_pixel_ray(const rt_camera *cam, uint32_t column, uint32_t row, uint32_t sample)
+{
+    /* 4^n samples on a regular 2^n x 2^n grid of sub-pixel centres (format §11.1),
+     * numbered row by row from the bottom left. */
+    uint32_t side = 1u << cam->trace.samples_per_pixel_index;
+    uint32_t a = sample % side, b = sample / side;
+    uint32_t j = cam->height - 1 - row; /* buffer rows count from the bottom */
+    rt_real s = rt_from_int(side);
+    rt_real x = rt_div(rt_add(rt_from_int(column), rt_div(rt_add(rt_from_int(a), RT_C(0.5)), s)), rt_from_int(cam->width));
+    rt_real y = rt_div(rt_add(rt_from_int(j), rt_div(rt_add(rt_from_int(b), RT_C(0.5)), s)), rt_from_int(cam->height));
+    return rt_camera_ray(cam, x, y);
+}
+
 rt_vec3 rt_render_pixel(const rt_tracer *tr, uint32_t column, uint32_t row)
 {
     const rt_camera *cam = &tr->scene->camera;
-    /* 4^n samples on a regular 2^n x 2^n grid of sub-pixel centres (format §11.1). */
-    uint32_t side = 1u << cam->trace.samples_per_pixel_index;
-    uint32_t j = cam->height - 1 - row; /* buffer rows count from the bottom */
-    rt_real w = rt_from_int(cam->width), h = rt_from_int(cam->height), s = rt_from_int(side);
+    uint32_t n = rt_samples_per_pixel(cam);
     rt_vec3 sum = rt_v3(RT_ZERO, RT_ZERO, RT_ZERO);
-    for (uint32_t b = 0; b < side; b++) {
-        rt_real sub_y = rt_div(rt_add(rt_from_int(b), RT_C(0.5)), s);
-        rt_real y = rt_div(rt_add(rt_from_int(j), sub_y), h);
-        for (uint32_t a = 0; a < side; a++) {
-            rt_real sub_x = rt_div(rt_add(rt_from_int(a), RT_C(0.5)), s);
-            rt_real x = rt_div(rt_add(rt_from_int(column), sub_x), w);
-            sum = rt_v3_add(sum, rt_trace(tr, rt_camera_ray(cam, x, y), 0));
-        }
-    }
-    if (side == 1) return sum;
-    rt_real n = rt_from_int((int64_t)side * side);
-    return rt_v3(rt_div(sum.x, n), rt_div(sum.y, n), rt_div(sum.z, n));
+    for (uint32_t k = 0; k < n; k++) sum = rt_v3_add(sum, rt_trace(tr, rt_pixel_ray(cam, column, row, k), 0));
+    if (n == 1) return sum;
+    rt_real count = rt_from_int(n);
+    return rt_v3(rt_div(sum.x, count), rt_div(sum.y, count), rt_div(sum.z, count));
 }
 
 uint8_t rt_color_to_byte(rt_real c)

@@ -7,6 +7,11 @@
 /* The camera ray through image point (x, y) in [0,1]^2, y = 0 at the bottom (format §8). */
 rt_ray rt_camera_ray(const rt_camera *cam, rt_real x, rt_real y);
 
+/* 4^(Samples Per Pixel) */
+uint32_t rt_samples_per_pixel(const rt_camera *cam);
+/* The camera ray of sample `sample` (0 .. samples-1) of pixel (column, row), row 0 = top. */
+rt_ray rt_pixel_ray(const rt_camera *cam, uint32_t column, uint32_t row, uint32_t sample);
+
 /* The averaged, unclamped colour of pixel (column, row), row 0 = top of the image. */
 rt_vec3 rt_render_pixel(const rt_tracer *tr, uint32_t column, uint32_t row);
 

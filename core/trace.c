@@ -16,10 +16,49 @@ static bool nearest(const rt_tracer *tr, const rt_ray *ray, rt_scene_hit *hit)
     return rt_scene_nearest(tr->scene, &rs, tr->use_bvh, hit);
 }
 
+/* ---- The debugger's log (no-ops when tr->log is NULL) ---- */
+
+static uint32_t log_begin(const rt_tracer *tr, rt_ray_kind kind, uint32_t parent, uint32_t depth, const rt_ray *ray)
+{
+    rt_ray_log *log = tr->log;
+    if (!log) return RT_NO_PARENT;
+    if (log->ray_count >= log->ray_capacity) {
+        log->overflow = true;
+        return RT_NO_PARENT;
+    }
+    rt_ray_record zero = {0};
+    rt_ray_record *r = &log->rays[log->ray_count];
+    *r = zero;
+    r->kind = kind;
+    r->parent = parent;
+    r->depth = depth;
+    r->ray = *ray;
+    return log->ray_count++;
+}
+
+static rt_ray_record *log_ray(const rt_tracer *tr, uint32_t id)
+{
+    return tr->log && id != RT_NO_PARENT ? &tr->log->rays[id] : 0;
+}
+
+static void log_light(const rt_tracer *tr, const rt_light_record *rec)
+{
+    rt_ray_log *log = tr->log;
+    if (!log || rec->ray == RT_NO_PARENT) return;
+    if (log->light_count >= log->light_capacity) {
+        log->overflow = true;
+        return;
+    }
+    log->lights[log->light_count++] = *rec;
+}
+
+/* ---- Shading ---- */
+
 /* Light reaching `point` from a light `distance` away along unit `to_light`:
  * 1 when unblocked, 0 behind an opaque surface, and with coloured shadows the
  * product of the transmittance of every surface crossed (format §10.1). */
-static rt_vec3 shadow_attenuation(const rt_tracer *tr, rt_vec3 point, rt_vec3 to_light, rt_real distance)
+static rt_vec3 shadow_attenuation(const rt_tracer *tr, rt_vec3 point, rt_vec3 to_light, rt_real distance,
+                                  uint32_t parent, uint32_t depth, uint32_t light)
 {
     const rt_scene *scene = tr->scene;
     rt_vec3 atten = rt_v3(RT_ONE, RT_ONE, RT_ONE);
@@ -31,12 +70,25 @@ static rt_vec3 shadow_attenuation(const rt_tracer *tr, rt_vec3 point, rt_vec3 to
      * only guards against pathological scenes. */
     for (uint32_t crossing = 0; crossing < 1u << 16; crossing++) {
         rt_ray ray = make_ray(origin, to_light, remaining);
+        uint32_t id = log_begin(tr, RT_RAY_SHADOW, parent, depth, &ray);
+        rt_ray_record *rec = log_ray(tr, id);
+        if (rec) rec->light = light;
         rt_scene_hit hit;
-        if (!nearest(tr, &ray, &hit)) return atten;
-        if (mode == 1) return rt_v3(RT_ZERO, RT_ZERO, RT_ZERO);
+        if (!nearest(tr, &ray, &hit)) {
+            if (rec) rec->color = atten;
+            return atten;
+        }
         rt_surface s = rt_surface_at(scene, &ray, &hit);
-        rt_vec3 kt = rt_channel_at(scene, &scene->materials[s.material].transmittance, s.uv);
+        rt_vec3 kt = mode == 1 ? rt_v3(RT_ZERO, RT_ZERO, RT_ZERO)
+                               : rt_channel_at(scene, &scene->materials[s.material].transmittance, s.uv);
         atten = rt_v3_mul(atten, kt);
+        if (rec) {
+            rec->hit = true;
+            rec->scene_hit = hit;
+            rec->surface = s;
+            rec->transmittance = kt;
+            rec->color = atten;
+        }
         if (rt_v3_is_zero(atten)) return atten;
         origin = s.point;
         if (remaining != RT_REAL_MAX) remaining = rt_sub(remaining, hit.hit.t);
@@ -53,38 +105,48 @@ static rt_real distance_attenuation(const rt_light *l, rt_real r)
 }
 
 typedef struct {
+    rt_vec3 point, n, v; /* hit point, normal facing the viewer, unit vector to the viewer */
     rt_vec3 kd, ks;
     rt_real shininess;
-} lit_material;
+    uint32_t ray, depth; /* the ray being shaded (for the log) */
+} shading_point;
 
 /* Ambient plus the shadowed Blinn-Phong term of one light at the surface point. */
-static rt_vec3 light_contribution(const rt_tracer *tr, const rt_light *l, rt_vec3 point, rt_vec3 n, rt_vec3 v,
-                                  const lit_material *m)
+static rt_vec3 light_contribution(const rt_tracer *tr, uint32_t index, const shading_point *p)
 {
-    rt_vec3 c = rt_v3_mul(m->kd, l->ambient);
+    const rt_light *l = &tr->scene->lights[index];
+    rt_vec3 black = rt_v3(RT_ZERO, RT_ZERO, RT_ZERO);
+    rt_light_record rec = {p->ray, index, rt_v3_mul(p->kd, l->ambient), RT_ZERO, RT_ZERO, black, black, RT_ONE,
+                           rt_v3(RT_ONE, RT_ONE, RT_ONE), black};
+    rec.contribution = rec.ambient;
     rt_vec3 to_light;
-    rt_real distance, atten;
+    rt_real distance;
     if (l->kind == RT_LIGHT_DIRECTIONAL) {
         to_light = l->direction;
         distance = RT_REAL_MAX;
-        atten = RT_ONE;
     } else {
         /* Area lights act as point lights at their centre outside Monte Carlo mode. */
-        rt_vec3 delta = rt_v3_sub(l->position, point);
+        rt_vec3 delta = rt_v3_sub(l->position, p->point);
         distance = rt_v3_length(delta);
-        if (distance == RT_ZERO) return c;
+        if (distance == RT_ZERO) {
+            log_light(tr, &rec);
+            return rec.contribution;
+        }
         to_light = rt_v3_scale(delta, rt_div(RT_ONE, distance));
-        atten = distance_attenuation(l, distance);
+        rec.distance_attenuation = distance_attenuation(l, distance);
     }
-    rt_real n_dot_l = rt_v3_dot(n, to_light);
-    if (!(n_dot_l > RT_ZERO)) return c;
-    rt_vec3 h = rt_v3_normalize(rt_v3_add(to_light, v));
-    rt_real n_dot_h = rt_max(rt_v3_dot(n, h), RT_ZERO);
-    rt_real spec = rt_pow(n_dot_h, rt_max(m->shininess, RT_C(1e-5)));
-    rt_vec3 brdf = rt_v3_add(rt_v3_scale(m->kd, n_dot_l), rt_v3_scale(m->ks, spec));
-    rt_vec3 shadow = shadow_attenuation(tr, point, to_light, distance);
-    rt_vec3 light = rt_v3_scale(rt_v3_mul(shadow, l->color), atten);
-    return rt_v3_add(c, rt_v3_mul(light, brdf));
+    rec.n_dot_l = rt_v3_dot(p->n, to_light);
+    if (rec.n_dot_l > RT_ZERO) {
+        rt_vec3 h = rt_v3_normalize(rt_v3_add(to_light, p->v));
+        rec.n_dot_h = rt_max(rt_v3_dot(p->n, h), RT_ZERO);
+        rec.diffuse = rt_v3_scale(p->kd, rec.n_dot_l);
+        rec.specular = rt_v3_scale(p->ks, rt_pow(rec.n_dot_h, rt_max(p->shininess, RT_C(1e-5))));
+        rec.shadow_attenuation = shadow_attenuation(tr, p->point, to_light, distance, p->ray, p->depth, index);
+        rt_vec3 light = rt_v3_scale(rt_v3_mul(rec.shadow_attenuation, l->color), rec.distance_attenuation);
+        rec.contribution = rt_v3_add(rec.ambient, rt_v3_mul(light, rt_v3_add(rec.diffuse, rec.specular)));
+    }
+    log_light(tr, &rec);
+    return rec.contribution;
 }
 
 /* Snell refraction of view vector v through normal n (facing v) with ratio eta;
@@ -99,38 +161,75 @@ static bool refract(rt_vec3 v, rt_vec3 n, rt_real eta, rt_vec3 *out)
     return !rt_v3_is_zero(*out);
 }
 
-rt_vec3 rt_trace(const rt_tracer *tr, rt_ray ray, uint32_t depth)
+static rt_vec3 trace_ray(const rt_tracer *tr, rt_ray ray, uint32_t depth, rt_ray_kind kind, uint32_t parent);
+
+/* Everything a hit sends back: emission, lights, the mirror and the refracted ray. */
+static rt_vec3 shade(const rt_tracer *tr, const rt_ray *ray, const rt_surface *s, uint32_t depth, uint32_t id)
 {
     const rt_scene *scene = tr->scene;
     const rt_trace_settings *set = &scene->camera.trace;
-    rt_vec3 black = rt_v3(RT_ZERO, RT_ZERO, RT_ZERO);
-    rt_scene_hit hit;
-    if (depth > set->max_depth || !nearest(tr, &ray, &hit)) return black;
-    rt_surface s = rt_surface_at(scene, &ray, &hit);
-    const rt_material *mat = &scene->materials[s.material];
-    rt_vec3 v = rt_v3_neg(ray.direction);
+    const rt_material *mat = &scene->materials[s->material];
+    shading_point p;
+    p.point = s->point;
+    p.v = rt_v3_neg(ray->direction);
     /* The shading normal is turned to face the viewer by its own sign (format §9). */
-    bool entering = rt_v3_dot(s.normal, v) > RT_ZERO;
-    rt_vec3 n = entering ? s.normal : rt_v3_neg(s.normal);
-    lit_material m = {rt_channel_at(scene, &mat->diffuse, s.uv), rt_channel_at(scene, &mat->specular, s.uv),
-                      mat->shininess};
-    rt_vec3 color = rt_channel_at(scene, &mat->emissive, s.uv);
-    for (uint32_t i = 0; i < scene->light_count; i++)
-        color = rt_v3_add(color, light_contribution(tr, &scene->lights[i], s.point, n, v, &m));
-    if (set->reflections && !rt_v3_is_zero(m.ks)) {
-        rt_vec3 r = rt_v3_sub(rt_v3_scale(n, rt_mul(RT_C(2.0), rt_v3_dot(v, n))), v);
-        rt_vec3 reflected = rt_trace(tr, make_ray(s.point, rt_v3_normalize(r), RT_REAL_MAX), depth + 1);
-        color = rt_v3_add(color, rt_v3_mul(m.ks, reflected));
+    bool entering = rt_v3_dot(s->normal, p.v) > RT_ZERO;
+    p.n = entering ? s->normal : rt_v3_neg(s->normal);
+    p.kd = rt_channel_at(scene, &mat->diffuse, s->uv);
+    p.ks = rt_channel_at(scene, &mat->specular, s->uv);
+    p.shininess = mat->shininess;
+    p.ray = id;
+    p.depth = depth;
+    rt_vec3 color = rt_channel_at(scene, &mat->emissive, s->uv);
+    rt_ray_record *rec = log_ray(tr, id);
+    if (rec) {
+        rec->normal_used = p.n;
+        rec->entering = entering;
+        rec->emissive = color;
     }
-    rt_vec3 kt = rt_channel_at(scene, &mat->transmittance, s.uv);
+    for (uint32_t i = 0; i < scene->light_count; i++) color = rt_v3_add(color, light_contribution(tr, i, &p));
+    if (set->reflections && !rt_v3_is_zero(p.ks)) {
+        rt_vec3 r = rt_v3_sub(rt_v3_scale(p.n, rt_mul(RT_C(2.0), rt_v3_dot(p.v, p.n))), p.v);
+        rt_vec3 reflected = trace_ray(tr, make_ray(s->point, rt_v3_normalize(r), RT_REAL_MAX), depth + 1,
+                                      RT_RAY_REFLECTION, id);
+        color = rt_v3_add(color, rt_v3_mul(p.ks, reflected));
+    }
+    rt_vec3 kt = rt_channel_at(scene, &mat->transmittance, s->uv);
     if (set->refractions && !rt_v3_is_zero(kt)) {
         rt_real eta = entering ? rt_div(RT_AIR_INDEX, mat->index_of_refraction)
                                : rt_div(mat->index_of_refraction, RT_AIR_INDEX);
         rt_vec3 t;
-        if (refract(v, n, eta, &t)) {
-            rt_vec3 transmitted = rt_trace(tr, make_ray(s.point, t, RT_REAL_MAX), depth + 1);
+        if (refract(p.v, p.n, eta, &t)) {
+            rt_vec3 transmitted = trace_ray(tr, make_ray(s->point, t, RT_REAL_MAX), depth + 1, RT_RAY_REFRACTION, id);
             color = rt_v3_add(color, rt_v3_mul(kt, transmitted));
+        } else if ((rec = log_ray(tr, id)) != 0) {
+            rec->total_internal_reflection = true;
         }
     }
     return color;
+}
+
+static rt_vec3 trace_ray(const rt_tracer *tr, rt_ray ray, uint32_t depth, rt_ray_kind kind, uint32_t parent)
+{
+    rt_vec3 black = rt_v3(RT_ZERO, RT_ZERO, RT_ZERO);
+    /* A ray past the recursion limit is neither intersected nor logged (format §10.5). */
+    if (depth > tr->scene->camera.trace.max_depth) return black;
+    uint32_t id = log_begin(tr, kind, parent, depth, &ray);
+    rt_scene_hit hit;
+    if (!nearest(tr, &ray, &hit)) return black;
+    rt_surface s = rt_surface_at(tr->scene, &ray, &hit);
+    rt_ray_record *rec = log_ray(tr, id);
+    if (rec) {
+        rec->hit = true;
+        rec->scene_hit = hit;
+        rec->surface = s;
+    }
+    rt_vec3 color = shade(tr, &ray, &s, depth, id);
+    if ((rec = log_ray(tr, id)) != 0) rec->color = color;
+    return color;
+}
+
+rt_vec3 rt_trace(const rt_tracer *tr, rt_ray ray, uint32_t depth)
+{
+    return trace_ray(tr, ray, depth, RT_RAY_CAMERA, RT_NO_PARENT);
 }

@@ -2,11 +2,12 @@
 #ifndef RT_TRACE_H
 #define RT_TRACE_H
 
-#include "surface.h"
+#include "raylog.h"
 
 typedef struct {
     const rt_scene *scene;
     bool use_bvh;
+    rt_ray_log *log; /* NULL except when debugging */
 } rt_tracer;
 
 /* The colour a ray brings back; depth 0 for camera rays. Not clamped. */

@@ -1,0 +1,52 @@
+/* A record of every ray traced for one sample, for `rtk debug`. The tracer fills it
+ * when given one; normal renders pass none and pay one pointer test per ray. */
+#ifndef RT_RAYLOG_H
+#define RT_RAYLOG_H
+
+#include "surface.h"
+
+#define RT_NO_PARENT UINT32_MAX
+
+typedef enum { RT_RAY_CAMERA, RT_RAY_REFLECTION, RT_RAY_REFRACTION, RT_RAY_SHADOW } rt_ray_kind;
+
+typedef struct {
+    rt_ray_kind kind;
+    uint32_t parent; /* index of the ray whose hit spawned it, or RT_NO_PARENT */
+    uint32_t depth;
+    uint32_t light;  /* shadow rays: the light they test */
+    rt_ray ray;
+    bool hit;
+    rt_scene_hit scene_hit;
+    rt_surface surface;  /* when hit */
+    rt_vec3 normal_used; /* the shading normal turned towards the viewer */
+    bool entering;       /* the viewer is on the shading normal's side */
+    bool total_internal_reflection;
+    rt_vec3 emissive;    /* k_e at the hit */
+    /* Shadow rays: the transmittance of the surface crossed (0 for opaque mode). */
+    rt_vec3 transmittance;
+    /* What the ray brings back: its colour (shadow rays: the attenuation so far). */
+    rt_vec3 color;
+} rt_ray_record;
+
+/* The terms of one light at one surface hit (format §9). */
+typedef struct {
+    uint32_t ray;   /* the ray whose hit this lights */
+    uint32_t light;
+    rt_vec3 ambient;              /* k_d * ambient */
+    rt_real n_dot_l, n_dot_h;
+    rt_vec3 diffuse;              /* k_d * N.L (0 when gated) */
+    rt_vec3 specular;             /* k_s * (N.H)^n_s (0 when gated) */
+    rt_real distance_attenuation;
+    rt_vec3 shadow_attenuation;
+    rt_vec3 contribution;         /* ambient + shadow * A_dist * I_L * (diffuse + specular) */
+} rt_light_record;
+
+typedef struct {
+    rt_ray_record *rays;
+    uint32_t ray_count, ray_capacity;
+    rt_light_record *lights;
+    uint32_t light_count, light_capacity;
+    bool overflow; /* set when a record did not fit */
+} rt_ray_log;
+
+#endif
