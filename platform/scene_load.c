@@ -66,6 +66,7 @@ typedef struct {
     char *root; /* the folder asset paths are relative to */
     store *st;
     list names; /* char *, the Name of each enabled node: rt_loaded_scene.node_names */
+    list material_names, texture_names; /* char *, by desc index */
     list textures, meshes, shaders, materials; /* the *_decl of the sections */
     uint32_t cube, square;                      /* desc.meshes index of the built-ins once used */
     bool have_camera;
@@ -88,6 +89,13 @@ static void *push(loader *L, list *l, size_t size)
     void *item = (char *)l->data + (size_t)l->count++ * size;
     memset(item, 0, size);
     return item;
+}
+
+/* Appends a copy of name to a list of char *. */
+static bool push_name(loader *L, list *l, const char *name)
+{
+    char **slot = push(L, l, sizeof *slot);
+    return slot && ((*slot = strdup(name)) || rt_yaml_fail(&L->y, NULL, NULL, "out of memory"));
 }
 
 /* The entry called name in a list of *_decl, or NULL. */
@@ -210,7 +218,8 @@ static bool load_channel(loader *L, const yaml_node_t *uniforms, const char *key
             return rt_yaml_fail(y, rt_yaml_get(y, channel, "Color Map"), "Color Map",
                                 "no texture named '%s' in Textures", map_name);
         if (t->index == UNSET) {
-            if (!push(L, &L->st->textures, sizeof(rt_texture))) return false;
+            if (!push(L, &L->st->textures, sizeof(rt_texture)) || !push_name(L, &L->texture_names, map_name))
+                return false;
             t->index = L->st->textures.count - 1; /* filled by load_assets */
         }
         out->texture = t->index;
@@ -232,7 +241,7 @@ static bool material_entry(loader *L, const char *name, const yaml_node_t *entry
     if (!(s ? s->traced : builtin_traced(shader))) return true;
 
     rt_material *m = push(L, &L->st->materials, sizeof *m);
-    if (!m || !rt_yaml_map(y, entry, "Uniforms", false, &u)) return false;
+    if (!m || !push_name(L, &L->material_names, name) || !rt_yaml_map(y, entry, "Uniforms", false, &u)) return false;
     d->index = L->st->materials.count - 1;
     size_t mark = rt_yaml_push(y, "Uniforms");
     if (!load_channel(L, u, "Diffuse", 0.5, &m->diffuse) || !load_channel(L, u, "Specular", 0.5, &m->specular) ||
@@ -612,6 +621,12 @@ static bool load_assets(loader *L)
 
 /* ---- Entry points ---- */
 
+static void free_names(char **names, uint32_t count)
+{
+    for (uint32_t i = 0; names && i < count; i++) free(names[i]);
+    free(names);
+}
+
 static void hand_over(loader *L, rt_loaded_scene *out)
 {
     store *st = L->st;
@@ -619,6 +634,8 @@ static void hand_over(loader *L, rt_loaded_scene *out)
     out->storage = st;
     out->node_names = L->names.data;
     out->node_count = L->names.count;
+    out->material_names = L->material_names.data;
+    out->texture_names = L->texture_names.data;
     d->materials = st->materials.data;
     d->material_count = st->materials.count;
     d->textures = st->textures.data;
@@ -646,6 +663,8 @@ bool rt_scene_load(const char *path, const char *assets_root, rt_loaded_scene *o
         hand_over(&L, out);
     } else {
         rt_loaded_scene partial = {.storage = L.st, .node_names = L.names.data, .node_count = L.names.count};
+        free_names(L.material_names.data, L.material_names.count);
+        free_names(L.texture_names.data, L.texture_names.count);
         rt_scene_unload(&partial);
     }
     for (uint32_t i = 0; i < L.meshes.count; i++) free(((mesh_decl *)L.meshes.data)[i].resolved);
@@ -660,6 +679,8 @@ bool rt_scene_load(const char *path, const char *assets_root, rt_loaded_scene *o
 
 void rt_scene_unload(rt_loaded_scene *scene)
 {
+    free_names(scene->material_names, scene->desc.material_count);
+    free_names(scene->texture_names, scene->desc.texture_count);
     store *st = scene->storage;
     if (st) {
         for (uint32_t i = 0; i < st->images.count; i++) rt_image_free(&((rt_image *)st->images.data)[i]);
@@ -669,7 +690,6 @@ void rt_scene_unload(rt_loaded_scene *scene)
         for (size_t i = 0; i < sizeof lists / sizeof lists[0]; i++) free(lists[i]->data);
         free(st);
     }
-    for (uint32_t i = 0; i < scene->node_count; i++) free(scene->node_names[i]);
-    free(scene->node_names);
+    free_names(scene->node_names, scene->node_count);
     memset(scene, 0, sizeof *scene);
 }

@@ -14,6 +14,9 @@ typedef struct {
     /* Node names indexed by rt_object_desc.source (for the debugger and `rtk info`). */
     char **node_names;
     uint32_t node_count;
+    /* Names of desc.materials[i] and desc.textures[i], as the file's sections call them. */
+    char **material_names;
+    char **texture_names;
     /* Owned storage behind desc (materials, textures, meshes, objects, lights...). */
     void *storage;
 } rt_loaded_scene;
