@@ -247,6 +247,27 @@ static void *png_encode(const rt_image *img, size_t rgb_size, size_t *size, int 
     return png;
 }
 
+/* path only names the image in error messages. */
+static void *encode_png(const char *path, const rt_image *img, size_t *size, char *err, size_t err_size)
+{
+    int rc;
+    void *bytes = png_encode(img, (size_t)img->width * img->height * 3, size, &rc);
+    if (!bytes)
+        fail(err, err_size, path, "cannot encode PNG: %s", spng_strerror(rc));
+    return bytes;
+}
+
+void *rt_image_encode_png(const rt_image *img, size_t *size, char *err, size_t err_size)
+{
+    if (!img->rgb) {
+        fail(err, err_size, "image", "no pixels to encode");
+        return NULL;
+    }
+    if (!check_size("image", img->width, img->height, err, err_size))
+        return NULL;
+    return encode_png("image", img, size, err, err_size);
+}
+
 bool rt_image_write(const char *path, const rt_image *img, char *err, size_t err_size)
 {
     if (!img->rgb)
@@ -257,10 +278,8 @@ bool rt_image_write(const char *path, const rt_image *img, char *err, size_t err
     size_t size = 0;
     void *bytes;
     if (ends_with_png(path)) {
-        int rc;
-        bytes = png_encode(img, rgb_size, &size, &rc);
-        if (!bytes)
-            return fail(err, err_size, path, "cannot encode PNG: %s", spng_strerror(rc));
+        if (!(bytes = encode_png(path, img, &size, err, err_size)))
+            return false;
     } else if (!(bytes = ppm_encode(img, rgb_size, &size))) {
         return fail(err, err_size, path, "out of memory");
     }

@@ -20,6 +20,10 @@ bool rt_image_read(const char *path, rt_image *out, char *err, size_t err_size);
 bool rt_image_write(const char *path, const rt_image *img, char *err, size_t err_size);
 void rt_image_free(rt_image *img);
 
+/* The PNG file of img in memory (for embedding): malloc'd bytes, released with free;
+ * NULL with one line in err on failure. */
+void *rt_image_encode_png(const rt_image *img, size_t *size, char *err, size_t err_size);
+
 /* Writes size bytes to path via a temporary file in the same folder and rename(2). */
 bool rt_write_file_atomic(const char *path, const void *data, size_t size, char *err, size_t err_size);
 
