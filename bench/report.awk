@@ -1,0 +1,77 @@
+# Turns bench/run.sh's rows (metric, unit, rtk double, rtk fixed, Embree; tab-separated,
+# empty = not measured) into the printed table, the position against issue 8's targets,
+# and the CSV and JSON files. Variables: header, fixed, csv, json, skipped, load.
+BEGIN { FS = "\t"; sub(/; $/, "", skipped) }
+
+function isnum(s) { return s ~ /^-?[0-9]+(\.[0-9]+)?$/ }
+function ratio(a, b) { return isnum(a) && isnum(b) && b + 0 != 0 ? sprintf("%.2f", a / b) : "" }
+function show(s) { return s == "" ? "-" : s }
+function jstr(s) { gsub(/\\/, "\\\\", s); gsub(/"/, "\\\"", s); return "\"" s "\"" }
+function jval(s) { return s == "" ? "null" : isnum(s) ? s + 0 : jstr(s) }
+
+{
+    n++
+    metric[n] = $1; unit[n] = $2; d[n] = $3; f[n] = $4; e[n] = $5
+    counted = unit[n] == "count"
+    de[n] = counted ? "" : ratio(d[n], e[n])
+    fe[n] = counted ? "" : ratio(f[n], e[n])
+    fd[n] = counted ? "" : ratio(f[n], d[n])
+    at[$1] = n
+    if ($1 ~ /^render / && isnum($3) && isnum($4)) { logsum += log($3 / $4); renders++ }
+}
+
+function target(text, value, met) {
+    tn++
+    ttext[tn] = text; tvalue[tn] = value; tmet[tn] = value == "" ? "unknown" : met ? "met" : "not met"
+}
+
+END {
+    printf "%s\n", header
+    if (load != "") printf "load average at start: %s\n", load
+    fmt = "%-44s %-8s %11s %11s %11s %9s %9s %9s\n"
+    printf "\n" fmt, "metric", "unit", "rtk double", "rtk fixed", "Embree", "dbl/Emb", "fix/Emb", "fix/dbl"
+    fixed_note = fixed == 1 ? "-" : "not built"
+    for (i = 1; i <= n; i++)
+        printf fmt, metric[i], unit[i], show(d[i]), f[i] == "" ? fixed_note : f[i], show(e[i]), show(de[i]),
+               show(fe[i]), show(fd[i])
+    if (skipped != "") printf "not rendered: %s\n", skipped
+
+    # Issue 8's targets, for rtk double unless said otherwise.
+    p = at["primary rays, 1 thread"]
+    target("primary rays 1 thread, rtk/Embree >= 0.5", de[p], de[p] >= 0.5)
+    b = at["BVH build vs Embree 1 thread"]
+    target("BVH build time, rtk/Embree (1 thread) <= 2", de[b], de[b] <= 2)
+    b2 = at["BVH build vs Embree all threads"]
+    target("BVH build time, rtk/Embree (all threads) <= 2", de[b2], de[b2] <= 2)
+    for (k = 1; k <= n; k++) if (metric[k] ~ /^primary speed-up/) s1 = d[k]; else if (metric[k] ~ /^shadow speed-up/) s2 = d[k]
+    target("primary speed-up, all threads vs 1 >= 1.8", s1, s1 >= 1.8)
+    target("shadow speed-up, all threads vs 1 >= 1.8", s2, s2 >= 1.8)
+    m = at["BVH + mesh memory (allocated)"]
+    target("BVH + mesh bytes per triangle <= 64 (allocated)", d[m], d[m] <= 64)
+    m2 = at["BVH + mesh memory (nodes used)"]
+    target("BVH + mesh bytes per triangle <= 64 (nodes used)", d[m2], d[m2] <= 64)
+    target("fixed/double primary rays 1 thread >= 0.3", fd[p], fd[p] >= 0.3)
+    speed = renders ? sprintf("%.2f", exp(logsum / renders)) : ""
+    target("fixed/double render speed (geometric mean) >= 0.3", speed, speed >= 0.3)
+    printf "\ntargets (issue 8), rtk double unless stated:\n"
+    for (i = 1; i <= tn; i++) printf "  %-52s %8s  %s\n", ttext[i], show(tvalue[i]), tmet[i]
+
+    print "section,metric,unit,rtk_double,rtk_fixed,embree,double_over_embree,fixed_over_embree,fixed_over_double" >csv
+    for (i = 1; i <= n; i++)
+        printf "%s,\"%s\",%s,%s,%s,%s,%s,%s,%s\n", metric[i] ~ /^render / ? "render" : "kernel", metric[i], unit[i],
+               d[i], f[i], e[i], de[i], fe[i], fd[i] >csv
+    for (i = 1; i <= tn; i++) printf "target,\"%s\",,%s,,,,,%s\n", ttext[i], tvalue[i], tmet[i] >csv
+
+    printf "{\n  \"header\": %s,\n  \"load_average\": %s,\n  \"not_rendered\": %s,\n  \"rows\": [\n", jstr(header),
+           jval(load), jstr(skipped) >json
+    for (i = 1; i <= n; i++)
+        printf "    {\"metric\": %s, \"unit\": %s, \"rtk_double\": %s, \"rtk_fixed\": %s, \"embree\": %s, " \
+               "\"double_over_embree\": %s, \"fixed_over_embree\": %s, \"fixed_over_double\": %s}%s\n",
+               jstr(metric[i]), jstr(unit[i]), jval(d[i]), jval(f[i]), jval(e[i]), jval(de[i]), jval(fe[i]),
+               jval(fd[i]), i < n ? "," : "" >json
+    printf "  ],\n  \"targets\": [\n" >json
+    for (i = 1; i <= tn; i++)
+        printf "    {\"target\": %s, \"value\": %s, \"status\": %s}%s\n", jstr(ttext[i]), jval(tvalue[i]),
+               jstr(tmet[i]), i < tn ? "," : "" >json
+    printf "  ]\n}\n" >json
+}

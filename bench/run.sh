@@ -1,0 +1,116 @@
+#!/usr/bin/env bash
+# The `make bench` driver (run from the repository root after the binaries are built):
+# makes the ray workload once, runs rtk double, rtk fixed and Embree on it, times the
+# render of every corpus and benchmark scene, then prints one table and writes
+# build/bench/results.csv and build/bench/results.json. Progress goes to stderr.
+#
+# Environment: BENCH_FIXED=1 when build-fixed/ is usable; BENCH_ASSETS (default
+# ../shared/cse457, the folder holding assets/); BENCH_SIZE (camera rays, default
+# 1024x1024); BENCH_REPEATS (best of N, default 3).
+set -eu
+
+ASSETS=${BENCH_ASSETS:-../shared/cse457}
+FIXED=${BENCH_FIXED:-0}
+SIZE=${BENCH_SIZE:-1024x1024}
+REPEATS=${BENCH_REPEATS:-3}
+OUT=build/bench
+MESH=scenes/bench/dense_mesh.yaml
+ROWS=$OUT/rows.tsv
+mkdir -p "$OUT"
+
+note() { printf '%s\n' "$*" >&2; }
+# The value of `key` in a harness's "key value" output file, or empty.
+val() { [ -f "$1" ] && awk -v k="$2" '$1 == k { print $2; exit }' "$1" || true; }
+
+if [ ! -d "$ASSETS/assets" ]; then
+    note "bench: no assets/ folder in $ASSETS (set BENCH_ASSETS to the folder that contains assets/)"
+    exit 3
+fi
+
+# Corpus scenes that render deterministically and have all their files.
+corpus=()
+skipped=()
+for scene in "$ASSETS"/assets/trace/*/*.yaml; do
+    name=${scene#"$ASSETS"/assets/trace/}
+    if tr -d '\r' <"$scene" | grep -Eq '^ *Monte Carlo: *[1-9]'; then
+        skipped+=("$name (Monte Carlo)")
+        continue
+    fi
+    missing=$(tr -d '\r' <"$scene" | sed -n 's/^ *Path: *//p' | while read -r p; do
+        [ -e "$ASSETS/$p" ] || printf '%s ' "$p"; done)
+    if [ -n "$missing" ]; then
+        skipped+=("$name (missing ${missing% })")
+        continue
+    fi
+    corpus+=("$scene")
+done
+bench_scenes=(scenes/bench/dense_mesh.yaml scenes/bench/spheres.yaml scenes/bench/deep.yaml)
+kernels=(double)
+[ "$FIXED" = 1 ] && kernels+=(fixed)
+steps=$((2 + ${#kernels[@]} + ${#kernels[@]} * (${#corpus[@]} + ${#bench_scenes[@]})))
+step=0
+progress() { step=$((step + 1)); note "[$step/$steps] $*"; }
+
+load=$(cut -d' ' -f1 /proc/loadavg)
+cpus=$(nproc)
+if awk -v l="$load" -v c="$cpus" 'BEGIN { exit !(l > 0.5 * c) }'; then
+    note "bench: warning: load average $load on $cpus CPUs before starting; timings will be noisy"
+fi
+
+progress "workload: $MESH, $SIZE camera rays and their shadow rays"
+build/bench/rtk-bench rays "$MESH" "$OUT/workload.bin" --assets "$ASSETS" --size "$SIZE" >"$OUT/rays.txt"
+progress "Embree"
+build/bench/embree-harness "$OUT/workload.bin" --repeats "$REPEATS" >"$OUT/embree.txt"
+for k in "${kernels[@]}"; do
+    dir=build; [ "$k" = fixed ] && dir=build-fixed
+    progress "rtk $k"
+    "$dir/bench/rtk-bench" run "$MESH" "$OUT/workload.bin" --assets "$ASSETS" --repeats "$REPEATS" >"$OUT/rtk-$k.txt"
+done
+rm -f "$OUT/workload.bin"
+
+D=$OUT/rtk-double.txt F=$OUT/rtk-fixed.txt E=$OUT/embree.txt
+: >"$ROWS"
+# row METRIC UNIT DOUBLE FIXED EMBREE (empty = not measured)
+row() { printf '%s\t%s\t%s\t%s\t%s\n' "$1" "$2" "$3" "$4" "$5" >>"$ROWS"; }
+speedup() { [ -n "$1" ] && [ -n "$2" ] && awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a / b }' || true; }
+row "BVH build vs Embree 1 thread" s "$(val $D build_s)" "$(val $F build_s)" "$(val $E build_s)"
+row "BVH build vs Embree all threads" s "$(val $D build_s)" "$(val $F build_s)" "$(val $E build_all_s)"
+for q in primary shadow; do
+    row "$q rays, 1 thread" Mrays/s "$(val $D ${q}_mrays_1)" "$(val $F ${q}_mrays_1)" "$(val $E ${q}_mrays_1)"
+    row "$q rays, $cpus threads" Mrays/s "$(val $D ${q}_mrays_all)" "$(val $F ${q}_mrays_all)" "$(val $E ${q}_mrays_all)"
+    row "$q speed-up $cpus/1 threads" x "$(speedup "$(val $D ${q}_mrays_all)" "$(val $D ${q}_mrays_1)")" \
+        "$(speedup "$(val $F ${q}_mrays_all)" "$(val $F ${q}_mrays_1)")" \
+        "$(speedup "$(val $E ${q}_mrays_all)" "$(val $E ${q}_mrays_1)")"
+    row "$q hits" count "$(val $D ${q}_hits)" "$(val $F ${q}_hits)" "$(val $E ${q}_hits)"
+done
+row "BVH + mesh memory (allocated)" B/tri "$(val $D bytes_per_tri)" "$(val $F bytes_per_tri)" "$(val $E bytes_per_tri)"
+row "BVH + mesh memory (nodes used)" B/tri "$(val $D bytes_per_tri_used)" "$(val $F bytes_per_tri_used)" ""
+
+# Wall time of `rtk render --quiet` (load, build, render on all threads, write a PPM).
+for scene in "${corpus[@]}" "${bench_scenes[@]}"; do
+    name=${scene#"$ASSETS"/assets/trace/}
+    times=()
+    for k in double fixed; do
+        dir=build; [ "$k" = fixed ] && dir=build-fixed
+        if [ "$k" = fixed ] && [ "$FIXED" != 1 ]; then times+=(""); continue; fi
+        progress "render $name ($k)"
+        start=$(date +%s.%N)
+        if "$dir/rtk" render --quiet "$scene" --assets "$ASSETS" -o "$OUT/render.ppm" 2>"$OUT/render.err"; then
+            times+=("$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.3f", b - a }')")
+        else
+            note "  failed: $(head -n1 "$OUT/render.err")"
+            times+=("failed")
+        fi
+    done
+    row "render $name" s "${times[0]}" "${times[1]}" ""
+done
+rm -f "$OUT/render.ppm" "$OUT/render.err"
+
+machine=$(lscpu | sed -n 's/^Model name: *//p' | head -n1)
+embree=$(val $E kernel)
+header="rtk vs Embree ${embree#embree-} on $machine, $cpus CPUs; mesh $MESH: $(val $D triangles) triangles,"
+header="$header $(val "$OUT/rays.txt" primary_rays) camera rays ($SIZE), $(val "$OUT/rays.txt" shadow_rays) shadow rays"
+[ "$FIXED" = 1 ] || header="$header; fixed: not built"
+awk -v header="$header" -v fixed="$FIXED" -v csv="$OUT/results.csv" -v json="$OUT/results.json" \
+    -v skipped="$(printf '%s; ' "${skipped[@]}")" -v load="$load" -f bench/report.awk "$ROWS"
+note "wrote $OUT/results.csv and $OUT/results.json"

@@ -1,0 +1,82 @@
+/* Timing and the chunked parallel loop; see timing.h. */
+#include "timing.h"
+
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <time.h>
+#include <unistd.h>
+
+/* Small enough to balance two threads at the end of a pass, large enough that the
+ * shared counter is touched rarely. */
+#define CHUNK 1024
+
+typedef struct {
+    bench_range_fn fn;
+    void *ctx;
+    uint32_t count;
+    atomic_uint next;
+} loop;
+
+double bench_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
+static void *run(void *arg)
+{
+    loop *l = arg;
+    for (;;) {
+        uint32_t begin = atomic_fetch_add(&l->next, CHUNK);
+        if (begin >= l->count) return NULL;
+        uint32_t end = l->count - begin < CHUNK ? l->count : begin + CHUNK;
+        l->fn(l->ctx, begin, end);
+    }
+}
+
+double bench_parallel_for(uint32_t count, uint32_t threads, bench_range_fn fn, void *ctx)
+{
+    loop l = {fn, ctx, count, 0};
+    atomic_init(&l.next, 0);
+    pthread_t extra[64];
+    uint32_t started = 0;
+    double start = bench_now();
+    while (started + 1 < threads && started < 64 && pthread_create(&extra[started], NULL, run, &l) == 0) started++;
+    run(&l);
+    for (uint32_t i = 0; i < started; i++) pthread_join(extra[i], NULL);
+    return bench_now() - start;
+}
+
+uint32_t bench_cpu_count(void)
+{
+    long n = sysconf(_SC_NPROCESSORS_ONLN);
+    return n > 0 ? (uint32_t)n : 1;
+}
+
+double bench_best_of(uint32_t repeats, uint32_t count, uint32_t threads, bench_range_fn fn, void *ctx)
+{
+    double best = 0.0;
+    for (uint32_t r = 0; r < repeats; r++) {
+        double t = bench_parallel_for(count, threads, fn, ctx);
+        if (r == 0 || t < best) best = t;
+    }
+    return best;
+}
+
+void bench_time_rays(const char *kernel, const char *name, uint32_t count, uint32_t repeats, bench_range_fn fn,
+                     void *ctx, const uint8_t *hit)
+{
+    uint32_t cpus = bench_cpu_count();
+    for (uint32_t threads = 1;; threads = cpus) {
+        fprintf(stderr, "  %s: %s rays, %u thread%s\n", kernel, name, threads, threads > 1 ? "s" : "");
+        double s = bench_best_of(repeats, count, threads, fn, ctx);
+        printf("%s_mrays_%s %.4f\n", name, threads == 1 ? "1" : "all", count / s * 1e-6);
+        if (threads == cpus) break;
+    }
+    uint32_t hits = 0;
+    for (uint32_t i = 0; i < count; i++) hits += hit[i];
+    printf("%s_rays %u\n%s_hits %u\n", name, count, name, hits);
+}

@@ -1,0 +1,30 @@
+/* Wall-clock timing and a chunked parallel loop, shared by the rtk and Embree harnesses
+ * so that both kernels are driven by the same scheduling code. */
+#ifndef BENCH_TIMING_H
+#define BENCH_TIMING_H
+
+#include <stdint.h>
+
+/* Monotonic seconds. */
+double bench_now(void);
+
+/* Work on items [begin, end); called concurrently from several threads. */
+typedef void (*bench_range_fn)(void *ctx, uint32_t begin, uint32_t end);
+
+/* Runs fn over [0, count) in fixed-size chunks handed out to `threads` threads (the
+ * calling thread is one of them); returns the wall time in seconds. */
+double bench_parallel_for(uint32_t count, uint32_t threads, bench_range_fn fn, void *ctx);
+
+/* Online CPUs, at least 1. */
+uint32_t bench_cpu_count(void);
+
+/* The best (smallest) time of `repeats` runs of bench_parallel_for. */
+double bench_best_of(uint32_t repeats, uint32_t count, uint32_t threads, bench_range_fn fn, void *ctx);
+
+/* Times fn over `count` rays with 1 thread and with all threads (progress on stderr,
+ * labelled `kernel`) and prints "<name>_mrays_1", "<name>_mrays_all", "<name>_rays"
+ * and "<name>_hits" (the sum of hit[], which fn fills) on stdout. */
+void bench_time_rays(const char *kernel, const char *name, uint32_t count, uint32_t repeats, bench_range_fn fn,
+                     void *ctx, const uint8_t *hit);
+
+#endif
