@@ -34,7 +34,7 @@ CORE_OBJ := $(CORE_SRC:%.c=$(BUILD)/%.o)
 PLATFORM_OBJ := $(PLATFORM_SRC:%.c=$(BUILD)/%.o)
 TEST_OBJ := $(TEST_SRC:%.c=$(BUILD)/%.o)
 
-.PHONY: all deps demo check clean
+.PHONY: all deps demo check bless clean
 all: $(BUILD)/rtk
 
 $(BUILD)/core/%.o: core/%.c
@@ -80,6 +80,11 @@ demo: deps
 check: deps
 	$(MAKE) $(BUILD)/rtk $(BUILD)/rtk-tests
 	$(BUILD)/rtk-tests --jobs 2
+	tests/golden.sh check $(BUILD)/rtk $(RT_REAL)
+
+# Rewrites tests/golden/$(RT_REAL).sha256; say why in the commit that changes it.
+bless: $(BUILD)/rtk
+	tests/golden.sh bless $(BUILD)/rtk $(RT_REAL)
 
 clean:
 	rm -rf build build-fixed demo.png

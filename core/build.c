@@ -188,6 +188,8 @@ static rt_status build_camera(const rt_camera_desc *c, rt_camera *cam, rt_build_
     cam->width = c->width;
     cam->height = c->height;
     cam->trace = c->trace;
+    if (cam->trace.max_depth > RT_MAX_RECURSION_DEPTH)
+        return fail(err, RT_ERR_INVALID, "Maximum Recursion Depth is above 64", UINT32_MAX);
     if (cam->trace.shadows > 2) cam->trace.shadows = 2;
     if (cam->trace.samples_per_pixel_index > 7) cam->trace.samples_per_pixel_index = 7;
     if (!rt_is_finite(cam->trace.focus_distance) || !rt_is_finite(cam->trace.aperture_size) ||

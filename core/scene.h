@@ -10,6 +10,8 @@
 
 #define RT_NO_TEXTURE UINT32_MAX
 #define RT_MAX_SUBDIVISION 5
+/* Rays recurse on the C stack: deeper scenes are rejected, not crashed. */
+#define RT_MAX_RECURSION_DEPTH 64
 
 /* ---- Description: filled in by a loader, consumed by rt_scene_build. ---- */
 
