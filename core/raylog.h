@@ -7,7 +7,7 @@
 
 #define RT_NO_PARENT UINT32_MAX
 
-typedef enum { RT_RAY_CAMERA, RT_RAY_REFLECTION, RT_RAY_REFRACTION, RT_RAY_SHADOW } rt_ray_kind;
+typedef enum { RT_RAY_CAMERA, RT_RAY_REFLECTION, RT_RAY_REFRACTION, RT_RAY_SHADOW, RT_RAY_DIFFUSE } rt_ray_kind;
 
 typedef struct {
     rt_ray_kind kind;
@@ -48,5 +48,13 @@ typedef struct {
     uint32_t light_count, light_capacity;
     bool overflow; /* set when a record did not fit */
 } rt_ray_log;
+
+/* Recording, for the tracers; each is a no-op when log is NULL. */
+/* Starts a record for a ray; returns its index, or RT_NO_PARENT when not recorded. */
+uint32_t rt_log_begin(rt_ray_log *log, rt_ray_kind kind, uint32_t parent, uint32_t depth, const rt_ray *ray);
+/* The record of ray id, or NULL when there is none. */
+rt_ray_record *rt_log_ray(rt_ray_log *log, uint32_t id);
+/* Appends the light terms of a recorded ray's hit. */
+void rt_log_light(rt_ray_log *log, const rt_light_record *rec);
 
 #endif

@@ -1,0 +1,140 @@
+/* Shading shared by both tracers; see shading.h. */
+#include "shading.h"
+
+/* The skeleton's refractive index of air (format §10.3). */
+#define RT_AIR_INDEX RT_C(1.0003)
+
+bool rt_nearest_hit(const rt_tracer *tr, const rt_ray *ray, rt_scene_hit *hit)
+{
+    rt_ray_setup rs = rt_ray_prepare(*ray);
+    return rt_scene_nearest(tr->scene, &rs, tr->use_bvh, hit);
+}
+
+rt_shading_point rt_shading_point_at(const rt_scene *scene, const rt_ray *ray, const rt_surface *s, uint32_t id,
+                                     uint32_t depth)
+{
+    const rt_material *mat = &scene->materials[s->material];
+    rt_shading_point p;
+    p.point = s->point;
+    p.v = rt_v3_neg(ray->direction);
+    /* The shading normal is turned to face the viewer by its own sign (format §9). */
+    p.entering = rt_v3_dot(s->normal, p.v) > RT_ZERO;
+    p.n = p.entering ? s->normal : rt_v3_neg(s->normal);
+    p.ke = rt_channel_at(scene, &mat->emissive, s->uv);
+    p.kd = rt_channel_at(scene, &mat->diffuse, s->uv);
+    p.ks = rt_channel_at(scene, &mat->specular, s->uv);
+    p.kt = rt_channel_at(scene, &mat->transmittance, s->uv);
+    p.shininess = mat->shininess;
+    p.index_of_refraction = mat->index_of_refraction;
+    p.ray = id;
+    p.depth = depth;
+    return p;
+}
+
+/* Light reaching `point` from a light `distance` away along unit `to_light`:
+ * 1 when unblocked, 0 behind an opaque surface, and with coloured shadows the
+ * product of the transmittance of every surface crossed (format §10.1). */
+static rt_vec3 shadow_attenuation(const rt_tracer *tr, rt_vec3 point, rt_vec3 to_light, rt_real distance,
+                                  uint32_t parent, uint32_t depth, uint32_t light)
+{
+    const rt_scene *scene = tr->scene;
+    rt_vec3 atten = rt_v3(RT_ONE, RT_ONE, RT_ONE);
+    uint32_t mode = scene->camera.trace.shadows;
+    if (mode == 0) return atten;
+    rt_vec3 origin = point;
+    rt_real remaining = distance;
+    /* Each crossing moves the origin forward by at least the hit epsilon; the bound
+     * only guards against pathological scenes. */
+    for (uint32_t crossing = 0; crossing < 1u << 16; crossing++) {
+        rt_ray ray = rt_make_ray(origin, to_light, remaining);
+        uint32_t id = rt_log_begin(tr->log, RT_RAY_SHADOW, parent, depth, &ray);
+        rt_ray_record *rec = rt_log_ray(tr->log, id);
+        if (rec) rec->light = light;
+        rt_scene_hit hit;
+        if (!rt_nearest_hit(tr, &ray, &hit)) {
+            if (rec) rec->color = atten;
+            return atten;
+        }
+        rt_surface s = rt_surface_at(scene, &ray, &hit);
+        rt_vec3 kt = mode == 1 ? rt_v3(RT_ZERO, RT_ZERO, RT_ZERO)
+                               : rt_channel_at(scene, &scene->materials[s.material].transmittance, s.uv);
+        atten = rt_v3_mul(atten, kt);
+        if (rec) {
+            rec->hit = true;
+            rec->scene_hit = hit;
+            rec->surface = s;
+            rec->transmittance = kt;
+            rec->color = atten;
+        }
+        if (rt_v3_is_zero(atten)) return atten;
+        origin = s.point;
+        if (remaining != RT_REAL_MAX) remaining = rt_sub(remaining, hit.hit.t);
+    }
+    return rt_v3(RT_ZERO, RT_ZERO, RT_ZERO);
+}
+
+/* 1 / (c + b r + a r^2), at most 1 (and 1 when the denominator is not positive). */
+static rt_real distance_attenuation(const rt_light *l, rt_real r)
+{
+    rt_real denom = rt_add(rt_add(l->atten_const, rt_mul(l->atten_linear, r)), rt_mul(l->atten_quad, rt_mul(r, r)));
+    if (!(denom > RT_ONE)) return RT_ONE;
+    return rt_div(RT_ONE, denom);
+}
+
+rt_vec3 rt_light_shade(const rt_tracer *tr, uint32_t index, const rt_shading_point *p, rt_vec3 position, bool emits)
+{
+    const rt_light *l = &tr->scene->lights[index];
+    rt_vec3 black = rt_v3(RT_ZERO, RT_ZERO, RT_ZERO);
+    rt_light_record rec = {p->ray, index, rt_v3_mul(p->kd, l->ambient), RT_ZERO, RT_ZERO, black, black, RT_ONE,
+                           rt_v3(RT_ONE, RT_ONE, RT_ONE), black};
+    rec.contribution = rec.ambient;
+    rt_vec3 to_light;
+    rt_real distance;
+    if (!emits) {
+        rt_log_light(tr->log, &rec);
+        return rec.contribution;
+    }
+    if (l->kind == RT_LIGHT_DIRECTIONAL) {
+        to_light = l->direction;
+        distance = RT_REAL_MAX;
+    } else {
+        rt_vec3 delta = rt_v3_sub(position, p->point);
+        distance = rt_v3_length(delta);
+        if (distance == RT_ZERO) {
+            rt_log_light(tr->log, &rec);
+            return rec.contribution;
+        }
+        to_light = rt_v3_scale(delta, rt_div(RT_ONE, distance));
+        rec.distance_attenuation = distance_attenuation(l, distance);
+    }
+    rec.n_dot_l = rt_v3_dot(p->n, to_light);
+    if (rec.n_dot_l > RT_ZERO) {
+        rt_vec3 h = rt_v3_normalize(rt_v3_add(to_light, p->v));
+        rec.n_dot_h = rt_max(rt_v3_dot(p->n, h), RT_ZERO);
+        rec.diffuse = rt_v3_scale(p->kd, rec.n_dot_l);
+        rec.specular = rt_v3_scale(p->ks, rt_pow(rec.n_dot_h, rt_max(p->shininess, RT_C(1e-5))));
+        rec.shadow_attenuation = shadow_attenuation(tr, p->point, to_light, distance, p->ray, p->depth, index);
+        rt_vec3 light = rt_v3_scale(rt_v3_mul(rec.shadow_attenuation, l->color), rec.distance_attenuation);
+        rec.contribution = rt_v3_add(rec.ambient, rt_v3_mul(light, rt_v3_add(rec.diffuse, rec.specular)));
+    }
+    rt_log_light(tr->log, &rec);
+    return rec.contribution;
+}
+
+rt_vec3 rt_mirror_direction(const rt_shading_point *p)
+{
+    return rt_v3_normalize(rt_v3_sub(rt_v3_scale(p->n, rt_mul(RT_C(2.0), rt_v3_dot(p->v, p->n))), p->v));
+}
+
+bool rt_refraction_direction(const rt_shading_point *p, rt_vec3 *out)
+{
+    rt_real eta = p->entering ? rt_div(RT_AIR_INDEX, p->index_of_refraction)
+                              : rt_div(p->index_of_refraction, RT_AIR_INDEX);
+    /* Snell's law with n facing v (format §10.3). */
+    rt_real cos_i = rt_v3_dot(p->n, p->v);
+    rt_real k = rt_sub(RT_ONE, rt_mul(rt_mul(eta, eta), rt_sub(RT_ONE, rt_mul(cos_i, cos_i))));
+    if (k < RT_ZERO) return false;
+    rt_vec3 t = rt_v3_sub(rt_v3_scale(p->n, rt_sub(rt_mul(eta, cos_i), rt_sqrt(k))), rt_v3_scale(p->v, eta));
+    *out = rt_v3_normalize(t);
+    return !rt_v3_is_zero(*out);
+}

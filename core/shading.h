@@ -1,0 +1,40 @@
+/* What the Whitted and the Monte Carlo tracers share: the shading frame at a hit,
+ * the direct light of one light (format §9, shadows §10.1) and the mirror and
+ * refracted directions (§10.2-§10.3). */
+#ifndef RT_SHADING_H
+#define RT_SHADING_H
+
+#include "trace.h"
+
+typedef struct {
+    rt_vec3 point, n, v; /* hit point, shading normal facing the viewer, unit vector to the viewer */
+    bool entering;       /* the viewer is on the shading normal's side */
+    rt_vec3 ke, kd, ks, kt;
+    rt_real shininess, index_of_refraction;
+    uint32_t ray, depth; /* the ray being shaded (for the log) */
+} rt_shading_point;
+
+static inline rt_ray rt_make_ray(rt_vec3 origin, rt_vec3 direction, rt_real t_max)
+{
+    rt_ray r = {origin, direction, RT_HIT_EPSILON, t_max};
+    return r;
+}
+
+/* The nearest hit along ray (t_min, t_max). */
+bool rt_nearest_hit(const rt_tracer *tr, const rt_ray *ray, rt_scene_hit *hit);
+
+/* The frame and material values at surface s, hit by ray `id` of the log at depth. */
+rt_shading_point rt_shading_point_at(const rt_scene *scene, const rt_ray *ray, const rt_surface *s, uint32_t id,
+                                     uint32_t depth);
+
+/* Ambient plus the shadowed Blinn-Phong term of light `index` as if it sat at
+ * `position` (point and area lights; directional lights use their direction).
+ * emits = false leaves the ambient term only. */
+rt_vec3 rt_light_shade(const rt_tracer *tr, uint32_t index, const rt_shading_point *p, rt_vec3 position, bool emits);
+
+/* The mirror direction of the view vector about the shading normal. */
+rt_vec3 rt_mirror_direction(const rt_shading_point *p);
+/* The refracted direction into (or out of) the surface; false on total internal reflection. */
+bool rt_refraction_direction(const rt_shading_point *p, rt_vec3 *out);
+
+#endif
