@@ -159,6 +159,12 @@ static rt_status build_lights(const rt_scene_desc *d, rt_arena *arena, rt_scene 
         l->direction = rt_v3_normalize(rt_affine_vector(&ld->world, rt_v3(RT_ZERO, RT_ONE, RT_ZERO)));
         if (ld->kind == RT_LIGHT_DIRECTIONAL && rt_v3_is_zero(l->direction))
             return fail(err, RT_ERR_INVALID, "a directional light has no direction (a scale of 0?)", UINT32_MAX);
+        rt_vec3 half = rt_v3(RT_C(-0.5), RT_ZERO, RT_C(-0.5));
+        l->corner = rt_affine_point(&ld->world, half);
+        l->edge_u = rt_affine_vector(&ld->world, rt_v3(RT_ONE, RT_ZERO, RT_ZERO));
+        l->edge_v = rt_affine_vector(&ld->world, rt_v3(RT_ZERO, RT_ZERO, RT_ONE));
+        /* Z x X is local +Y, also when the node's Y scale is 0. */
+        l->normal = rt_v3_normalize(rt_v3_cross(l->edge_v, l->edge_u));
         l->color = ld->color;
         l->ambient = ld->ambient;
         l->atten_const = ld->atten_const;
@@ -191,10 +197,17 @@ static rt_status build_camera(const rt_camera_desc *c, rt_camera *cam, rt_build_
     if (cam->trace.max_depth > RT_MAX_RECURSION_DEPTH)
         return fail(err, RT_ERR_INVALID, "Maximum Recursion Depth is above 64", UINT32_MAX);
     if (cam->trace.shadows > 2) cam->trace.shadows = 2;
+    /* Choice indices above their range mean the last choice, as in the skeleton. */
     if (cam->trace.samples_per_pixel_index > 7) cam->trace.samples_per_pixel_index = 7;
+    if (cam->trace.monte_carlo > 2) cam->trace.monte_carlo = 2;
+    if (cam->trace.sample_count_type > 2) cam->trace.sample_count_type = 2;
+    if (cam->trace.min_samples_index > 4) cam->trace.min_samples_index = 4;
+    if (cam->trace.max_samples_index > 6) cam->trace.max_samples_index = 6;
     if (!rt_is_finite(cam->trace.focus_distance) || !rt_is_finite(cam->trace.aperture_size) ||
-        !rt_is_finite(cam->ortho_width))
-        return fail(err, RT_ERR_INVALID, "camera focus, aperture or view width is not finite", UINT32_MAX);
+        !rt_is_finite(cam->ortho_width) || !rt_is_finite(cam->trace.difference_threshold) ||
+        !rt_is_finite(cam->trace.std_error_threshold))
+        return fail(err, RT_ERR_INVALID, "camera focus, aperture, view width or a sampling threshold is not finite",
+                    UINT32_MAX);
     return RT_OK;
 }
 

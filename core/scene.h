@@ -69,9 +69,14 @@ typedef struct {
     uint32_t shadows; /* 0 none, 1 opaque, 2 coloured */
     bool reflections, refractions;
     uint32_t samples_per_pixel_index; /* samples = 4^index */
-    uint32_t monte_carlo;             /* 0 off; the Monte Carlo modes are not rendered yet */
+    uint32_t monte_carlo;             /* 0 off, 1 uniform random, 2 stratified random (format §12) */
     bool diffuse_reflection, caustics, random_single_branching;
     rt_real focus_distance, aperture_size;
+    uint32_t sample_count_type;       /* 0 constant, 1 adaptive (recursive), 2 standard error (§11.1) */
+    uint32_t min_samples_index;       /* adaptive types: at least 4^index samples, index 0..4 */
+    uint32_t max_samples_index;       /* adaptive types: at most 4^(index+1) samples, index 0..6 */
+    rt_real difference_threshold;     /* type 1: split while corner colours differ by more */
+    rt_real std_error_threshold;      /* type 2: stop once the mean's standard error is below */
 } rt_trace_settings;
 
 typedef struct {
@@ -118,6 +123,9 @@ typedef struct {
     rt_vec3 direction; /* directional: unit vector towards the light */
     rt_vec3 color, ambient;
     rt_real atten_const, atten_linear, atten_quad;
+    /* Area lights: the node's unit square in local XZ is corner + u edge_u + v edge_v,
+     * u, v in [0,1]; it emits to the side of normal (local +Y; zero if degenerate). */
+    rt_vec3 corner, edge_u, edge_v, normal;
 } rt_light;
 
 typedef struct {

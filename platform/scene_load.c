@@ -262,7 +262,7 @@ static bool read_camera(rt_yaml *y, const yaml_node_t *c, const rt_affine *world
 {
     rt_trace_settings *s = &cam->trace;
     yaml_node_t *t;
-    double fov, ortho, focus, aperture;
+    double fov, ortho, focus, aperture, difference, std_error;
     memset(cam, 0, sizeof *cam);
     cam->world = *world;
     if (!rt_yaml_real(y, c, "FOV", 50.0, &fov) || !rt_yaml_bool(y, c, "Perspective Camera?", true, &cam->perspective) ||
@@ -281,13 +281,20 @@ static bool read_camera(rt_yaml *y, const yaml_node_t *c, const rt_affine *world
         !rt_yaml_bool(y, t, "Diffuse Reflection", true, &s->diffuse_reflection) ||
         !rt_yaml_bool(y, t, "Caustics", true, &s->caustics) ||
         !rt_yaml_bool(y, t, "Random Single Branching", true, &s->random_single_branching) ||
-        !rt_yaml_real(y, t, "Focus Distance", 1.0, &focus) || !rt_yaml_real(y, t, "Aperture Size", 0.0, &aperture))
+        !rt_yaml_real(y, t, "Focus Distance", 1.0, &focus) || !rt_yaml_real(y, t, "Aperture Size", 0.0, &aperture) ||
+        !rt_yaml_index(y, t, "Sample Count Type", 0, 2, &s->sample_count_type) ||
+        !rt_yaml_index(y, t, "Minimum Samples", 0, 4, &s->min_samples_index) ||
+        !rt_yaml_index(y, t, "Maximum Samples", 2, 6, &s->max_samples_index) ||
+        !rt_yaml_real(y, t, "Difference Threshold", 0.02, &difference) ||
+        !rt_yaml_real(y, t, "Std. Error Threshold", 0.02, &std_error))
         return false;
     rt_yaml_pop(y, mark);
     cam->fov_degrees = rt_from_double(fov);
     cam->ortho_width = rt_from_double(ortho);
     s->focus_distance = rt_from_double(focus);
     s->aperture_size = rt_from_double(aperture);
+    s->difference_threshold = rt_from_double(difference);
+    s->std_error_threshold = rt_from_double(std_error);
     return true;
 }
 
