@@ -10,25 +10,37 @@ bool rt_nearest_hit(const rt_tracer *tr, const rt_ray *ray, rt_scene_hit *hit)
     return rt_scene_nearest(tr->scene, &rs, tr->use_bvh, hit);
 }
 
-rt_shading_point rt_shading_point_at(const rt_scene *scene, const rt_ray *ray, const rt_surface *s, uint32_t id,
-                                     uint32_t depth)
+bool rt_shade_hit(const rt_tracer *tr, const rt_ray *ray, rt_ray_kind kind, uint32_t parent, uint32_t depth,
+                  rt_shading_point *p)
 {
-    const rt_material *mat = &scene->materials[s->material];
-    rt_shading_point p;
-    p.point = s->point;
-    p.v = rt_v3_neg(ray->direction);
+    const rt_scene *scene = tr->scene;
+    p->ray = rt_log_begin(tr->log, kind, parent, depth, ray);
+    p->depth = depth;
+    rt_scene_hit hit;
+    if (!rt_nearest_hit(tr, ray, &hit)) return false;
+    rt_surface s = rt_surface_at(scene, ray, &hit);
+    const rt_material *mat = &scene->materials[s.material];
+    p->point = s.point;
+    p->v = rt_v3_neg(ray->direction);
     /* The shading normal is turned to face the viewer by its own sign (format §9). */
-    p.entering = rt_v3_dot(s->normal, p.v) > RT_ZERO;
-    p.n = p.entering ? s->normal : rt_v3_neg(s->normal);
-    p.ke = rt_channel_at(scene, &mat->emissive, s->uv);
-    p.kd = rt_channel_at(scene, &mat->diffuse, s->uv);
-    p.ks = rt_channel_at(scene, &mat->specular, s->uv);
-    p.kt = rt_channel_at(scene, &mat->transmittance, s->uv);
-    p.shininess = mat->shininess;
-    p.index_of_refraction = mat->index_of_refraction;
-    p.ray = id;
-    p.depth = depth;
-    return p;
+    p->entering = rt_v3_dot(s.normal, p->v) > RT_ZERO;
+    p->n = p->entering ? s.normal : rt_v3_neg(s.normal);
+    p->ke = rt_channel_at(scene, &mat->emissive, s.uv);
+    p->kd = rt_channel_at(scene, &mat->diffuse, s.uv);
+    p->ks = rt_channel_at(scene, &mat->specular, s.uv);
+    p->kt = rt_channel_at(scene, &mat->transmittance, s.uv);
+    p->shininess = mat->shininess;
+    p->index_of_refraction = mat->index_of_refraction;
+    rt_ray_record *rec = rt_log_ray(tr->log, p->ray);
+    if (rec) {
+        rec->hit = true;
+        rec->scene_hit = hit;
+        rec->surface = s;
+        rec->normal_used = p->n;
+        rec->entering = p->entering;
+        rec->emissive = p->ke;
+    }
+    return true;
 }
 
 /* Light reaching `point` from a light `distance` away along unit `to_light`:

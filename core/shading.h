@@ -23,9 +23,10 @@ static inline rt_ray rt_make_ray(rt_vec3 origin, rt_vec3 direction, rt_real t_ma
 /* The nearest hit along ray (t_min, t_max). */
 bool rt_nearest_hit(const rt_tracer *tr, const rt_ray *ray, rt_scene_hit *hit);
 
-/* The frame and material values at surface s, hit by ray `id` of the log at depth. */
-rt_shading_point rt_shading_point_at(const rt_scene *scene, const rt_ray *ray, const rt_surface *s, uint32_t id,
-                                     uint32_t depth);
+/* Traces ray (recorded in the log as `kind`, spawned by ray `parent`) to its nearest
+ * hit and fills p with the frame and material values there; false on a miss. */
+bool rt_shade_hit(const rt_tracer *tr, const rt_ray *ray, rt_ray_kind kind, uint32_t parent, uint32_t depth,
+                  rt_shading_point *p);
 
 /* Ambient plus the shadowed Blinn-Phong term of light `index` as if it sat at
  * `position` (point and area lights; directional lights use their direction).
