@@ -1,0 +1,188 @@
+/* `rtk debug`: every ray behind one pixel, and why its colour came out as it did. */
+#include "debug_cmd.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include "cli.h"
+#include "debug_output.h"
+#include "exit_codes.h"
+#include "parallel.h"
+
+/* Rays (and light records) logged per run: far more than a Whitted tree of one pixel
+ * needs at the default settings; deep, many-light or heavily sampled pixels are cut
+ * short with a note, and their colour stays exact. */
+#define LOG_CAPACITY (1u << 16)
+
+static const char usage[] =
+    "usage: rtk debug SCENE.yaml --pixel X,Y [options]\n"
+    "\n"
+    "Traces one pixel and prints every ray behind it: kind, depth, origin, direction,\n"
+    "what it hit (node, primitive, triangle, t, point, normals, uv, material), the terms\n"
+    "of every light, and the colour each ray brings back; then the pixel's colour and\n"
+    "its 8-bit value, which equal the rendered image's pixel.\n"
+    "\n"
+    "  --pixel X,Y         the pixel: column X, row Y, (0,0) at the top left of the image\n"
+    "  --sample K          trace only sample K (0 .. samples per pixel - 1)\n"
+    "  --json              print the ray tree as one JSON document instead of text\n"
+    "  --svg FILE          also draw it: the image with the pixel marked, and the rays\n"
+    "                      projected on the Z-Y (side) and X-Z (top) planes\n"
+    "  --width N           override the camera's Render Width (px), 1..16384\n"
+    "  --height N          override the camera's Render Height (px), 1..16384\n"
+    "  --depth N           override Maximum Recursion Depth, 0..64\n"
+    "  --aa N              override Samples Per Pixel: 4^N samples per pixel, N 0..7\n"
+    "  --assets DIR        the folder that contains assets/ (default: found from the scene's path)\n"
+    "  --max-memory SIZE   cap on scene memory, e.g. 512M or 4G (default 4G)\n"
+    "\n"
+    "Exit codes: 0 ok, 2 bad arguments (including a pixel outside the image), 3 bad or\n"
+    "missing input file, 4 SVG not writable, 5 over the memory cap.\n";
+
+typedef struct {
+    const char *scene, *pixel, *svg;
+    rt_build_options build;
+    uint32_t x, y, sample;
+    bool json;
+} debug_args;
+
+/* "X,Y" as two whole numbers below the given bounds. */
+static bool parse_pixel(const char *s, uint32_t width, uint32_t height, uint32_t *x, uint32_t *y)
+{
+    char buf[64];
+    const char *comma = strchr(s, ',');
+    if (!comma || strlen(s) >= sizeof buf) return false;
+    memcpy(buf, s, (size_t)(comma - s));
+    buf[comma - s] = '\0';
+    return width > 0 && height > 0 && rt_parse_u32(buf, 0, width - 1, x) && rt_parse_u32(comma + 1, 0, height - 1, y);
+}
+
+static int parse_args(int argc, char **argv, debug_args *a)
+{
+    memset(a, 0, sizeof *a);
+    a->build.max_memory = (size_t)4 << 30;
+    a->build.depth = -1;
+    a->build.aa = -1;
+    a->sample = RT_PIXEL_ALL_SAMPLES;
+    for (int i = 1; i < argc; i++) {
+        const char *arg = argv[i];
+        const char *val = i + 1 < argc ? argv[i + 1] : NULL;
+        uint32_t n;
+        if (!strcmp(arg, "--help") || !strcmp(arg, "-h")) {
+            fputs(usage, stdout);
+            exit(RT_EXIT_OK);
+        } else if (!strcmp(arg, "--pixel")) {
+            if (!val) return rt_usage_error("debug", "missing X,Y after", arg);
+            a->pixel = val, i++;
+        } else if (!strcmp(arg, "--sample")) {
+            if (!rt_parse_u32(val, 0, UINT32_MAX - 1, &n))
+                return rt_usage_error("debug", "expected a number after", arg);
+            a->sample = n, i++;
+        } else if (!strcmp(arg, "--svg")) {
+            if (!val) return rt_usage_error("debug", "missing file after", arg);
+            a->svg = val, i++;
+        } else if (!strcmp(arg, "--width") || !strcmp(arg, "--height")) {
+            if (!rt_parse_u32(val, 1, 16384, &n)) return rt_usage_error("debug", "expected 1..16384 after", arg);
+            *(arg[2] == 'w' ? &a->build.width : &a->build.height) = n, i++;
+        } else if (!strcmp(arg, "--depth")) {
+            if (!rt_parse_u32(val, 0, 64, &n)) return rt_usage_error("debug", "expected 0..64 after", arg);
+            a->build.depth = (int32_t)n, i++;
+        } else if (!strcmp(arg, "--aa")) {
+            if (!rt_parse_u32(val, 0, 7, &n)) return rt_usage_error("debug", "expected 0..7 after", arg);
+            a->build.aa = (int32_t)n, i++;
+        } else if (!strcmp(arg, "--assets")) {
+            if (!val) return rt_usage_error("debug", "missing folder after", arg);
+            a->build.assets_root = val, i++;
+        } else if (!strcmp(arg, "--max-memory")) {
+            if (!rt_parse_bytes(val, &a->build.max_memory))
+                return rt_usage_error("debug", "expected a size such as 512M after", arg);
+            i++;
+        } else if (!strcmp(arg, "--json")) {
+            a->json = true;
+        } else if (arg[0] == '-' && arg[1]) {
+            return rt_usage_error("debug", "unknown option", arg);
+        } else if (!a->scene) {
+            a->scene = arg;
+        } else {
+            return rt_usage_error("debug", "unexpected argument", arg);
+        }
+    }
+    if (!a->scene) return rt_usage_error("debug", "no scene file given", NULL);
+    if (!a->pixel) return rt_usage_error("debug", "no pixel given: add --pixel X,Y", NULL);
+    return RT_EXIT_OK;
+}
+
+/* The pixel and sample exist only once the scene (and its image size) is known. */
+static int check_pixel(debug_args *a, const rt_camera *cam)
+{
+    char what[96];
+    if (!parse_pixel(a->pixel, cam->width, cam->height, &a->x, &a->y)) {
+        snprintf(what, sizeof what, "expected X,Y with X in 0..%u and Y in 0..%u for --pixel, got", cam->width - 1,
+                 cam->height - 1);
+        return rt_usage_error("debug", what, a->pixel);
+    }
+    uint32_t samples = rt_samples_per_pixel(cam);
+    if (a->sample != RT_PIXEL_ALL_SAMPLES && a->sample >= samples) {
+        snprintf(what, sizeof what, "the scene has %u sample%s per pixel; no --sample", samples,
+                 samples == 1 ? "" : "s");
+        char k[16];
+        snprintf(k, sizeof k, "%u", a->sample);
+        return rt_usage_error("debug", what, k);
+    }
+    return RT_EXIT_OK;
+}
+
+static int write_svg(const debug_args *a, const rt_pixel_trace *pt)
+{
+    const rt_scene *scene = &pt->built->scene;
+    const rt_camera *cam = &scene->camera;
+    rt_image img = {cam->width, cam->height, calloc((size_t)cam->width * cam->height, 3)};
+    if (!img.rgb) {
+        fprintf(stderr, "rtk debug: %s: no memory for a %ux%u image\n", a->scene, img.width, img.height);
+        return RT_EXIT_MEMORY;
+    }
+    rt_tracer tracer = {scene, true, NULL};
+    rt_parallel_options popt = {0, 0, isatty(STDERR_FILENO) != 0, NULL};
+    int rc = RT_EXIT_OK;
+    char err[RT_ERR_SIZE];
+    if (!rt_render_parallel(&tracer, &popt, img.rgb)) {
+        fprintf(stderr, "rtk debug: %s: the render for the SVG failed\n", a->scene);
+        rc = RT_EXIT_MEMORY;
+    } else if (!rt_debug_write_svg(a->svg, pt, &img, err, sizeof err)) {
+        fprintf(stderr, "rtk debug: %s\n", err);
+        rc = RT_EXIT_OUTPUT;
+    }
+    rt_image_free(&img);
+    return rc;
+}
+
+int rt_cmd_debug(int argc, char **argv)
+{
+    debug_args a;
+    int rc = parse_args(argc, argv, &a);
+    if (rc != RT_EXIT_OK) return rc;
+    char err[RT_ERR_SIZE];
+    rt_built_scene built;
+    rc = rt_scene_open(a.scene, &a.build, &built, err, sizeof err);
+    if (rc != RT_EXIT_OK) {
+        fprintf(stderr, "rtk debug: %s\n", err);
+        return rc;
+    }
+    rt_pixel_trace pt;
+    rc = check_pixel(&a, &built.scene.camera);
+    if (rc == RT_EXIT_OK && !rt_pixel_trace_run(&pt, &built, a.x, a.y, a.sample, LOG_CAPACITY)) {
+        fprintf(stderr, "rtk debug: no memory for the ray log\n");
+        rc = RT_EXIT_MEMORY;
+    }
+    if (rc != RT_EXIT_OK) {
+        rt_scene_close(&built);
+        return rc;
+    }
+    if (pt.log.overflow)
+        fprintf(stderr, "rtk debug: the ray log is full: only the first %u rays are shown\n", LOG_CAPACITY);
+    if (a.json) rt_debug_print_json(stdout, &pt);
+    else rt_debug_print_text(stdout, &pt);
+    if (a.svg) rc = write_svg(&a, &pt);
+    rt_pixel_trace_free(&pt);
+    rt_scene_close(&built);
+    return rc;
+}

@@ -1,0 +1,507 @@
+/* `rtk debug`: what the ray tree says about known pixels of corpus and hand-written scenes,
+ * that its colour is the rendered pixel's to the bit, that the terms add up, and the CLI
+ * (text, JSON that parses, the SVG and its embedded image, usage errors). */
+#include "capture.h"
+#include "debug_cmd.h"
+#include "exit_codes.h"
+#include "json_check.h"
+#include "pixel_trace.h"
+#include "reference.h"
+#include "tmpdir.h"
+
+#include <criterion/criterion.h>
+#include <criterion/redirect.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define CAPACITY (1u << 16)
+
+static char dir[64], tiny_path[128];
+static rt_built_scene built;
+static bool built_open;
+static rt_pixel_trace pt;
+
+/* A glass ball on a floor, lit by a point light, 12x9 pixels, 4 samples per pixel. */
+static const char tiny_scene[] =
+    "Materials:\n"
+    "    Glass:\n"
+    "        Shader: Blinn-Phong Shader\n"
+    "        Uniforms:\n"
+    "            Diffuse: {Color: {R: 0.2, G: 0.3, B: 0.4}}\n"
+    "            Specular: {Color: {R: 0.5, G: 0.5, B: 0.5}}\n"
+    "            Transmittence: {Color: {R: 0.5, G: 0.6, B: 0.7}}\n"
+    "            IndexOfRefraction: 1.5\n"
+    "    Floor:\n"
+    "        Shader: Blinn-Phong Shader\n"
+    "        Uniforms:\n"
+    "            Diffuse: {Color: {R: 0.8, G: 0.8, B: 0.8}}\n"
+    "            Specular: {Color: {R: 0, G: 0, B: 0}}\n"
+    "Root:\n"
+    "    Name: Root\n"
+    "    Children:\n"
+    "        - Name: Eye\n"
+    "          Components:\n"
+    "              Transform: {Translation: {X: 0, Y: 0.5, Z: 4}}\n"
+    "              Camera: {FOV: 40, Render Width (px): 12, Render Height (px): 9,\n"
+    "                       Trace: {Samples Per Pixel: 1, Shadows: 2, Maximum Recursion Depth: 4}}\n"
+    "        - Name: Lamp\n"
+    "          Components:\n"
+    "              Transform: {Translation: {X: 2, Y: 3, Z: 2}}\n"
+    "              PointLight: {Ambient: {R: 0.1, G: 0.1, B: 0.1}, Quad Atten: 0.01}\n"
+    "        - Name: Ball\n"
+    "          Components:\n"
+    "              Transform: {Translation: {X: 0, Y: 0.5, Z: 0}}\n"
+    "              Sphere: {Material: Glass}\n"
+    "        - Name: Ground\n"
+    "          Components:\n"
+    "              Transform: {Rotation: {X: -90}, Scale: {X: 6, Y: 6, Z: 6}}\n"
+    "              Plane: {Material: Floor}\n";
+
+static void setup(void)
+{
+    cr_assert(tmpdir_make(dir, sizeof dir, "debug"), "cannot create a scratch folder");
+    snprintf(tiny_path, sizeof tiny_path, "%s/tiny.yaml", dir);
+    FILE *f = fopen(tiny_path, "wb");
+    cr_assert_not_null(f);
+    fputs(tiny_scene, f);
+    cr_assert_eq(fclose(f), 0);
+    cr_redirect_stderr();
+}
+
+static void teardown(void)
+{
+    rt_pixel_trace_free(&pt);
+    if (built_open) rt_scene_close(&built);
+    tmpdir_remove(dir);
+}
+
+TestSuite(debug, .init = setup, .fini = teardown);
+
+static const char *corpus(const char *name)
+{
+    static char path[4096];
+    snprintf(path, sizeof path, "%s/simple/%s", rt_test_trace_dir(), name);
+    return path;
+}
+
+static void open_scene(const char *path)
+{
+    if (built_open) rt_scene_close(&built);
+    rt_build_options opt = {.max_memory = (size_t)1 << 30, .depth = -1, .aa = -1};
+    char err[RT_ERR_SIZE];
+    cr_assert_eq(rt_scene_open(path, &opt, &built, err, sizeof err), RT_EXIT_OK, "%s", err);
+    built_open = true;
+}
+
+static void trace(uint32_t x, uint32_t y, uint32_t sample)
+{
+    rt_pixel_trace_free(&pt);
+    cr_assert(rt_pixel_trace_run(&pt, &built, x, y, sample, CAPACITY));
+    cr_assert_not(pt.log.overflow);
+}
+
+static const rt_ray_record *root(void)
+{
+    cr_assert_neq(pt.first_root, RT_NO_PARENT, "no camera ray logged");
+    return &pt.log.rays[pt.first_root];
+}
+
+static void expect_vec(rt_vec3 got, double x, double y, double z, double tol, const char *what)
+{
+    cr_expect(fabs(got.x - x) <= tol && fabs(got.y - y) <= tol && fabs(got.z - z) <= tol,
+              "%s: got (%.17g, %.17g, %.17g), expected (%.17g, %.17g, %.17g)", what, got.x, got.y, got.z, x, y, z);
+}
+
+/* ---- Known hits ---- */
+
+Test(debug, cylinder_at_the_image_centre)
+{
+    open_scene(corpus("cyl_diffuse.yaml"));
+    trace(256, 256, RT_PIXEL_ALL_SAMPLES);
+    const rt_ray_record *r = root();
+    cr_assert(r->hit);
+    rt_hit_names n = rt_pixel_trace_names(&pt, r);
+    cr_expect_str_eq(n.node, "Cylinder");
+    cr_expect_str_eq(n.primitive, "cylinder");
+    cr_expect_str_eq(n.material, "Cylinder");
+    cr_expect_eq(n.triangle, UINT32_MAX);
+    /* The camera looks down the cylinder's tilted axis onto its top cap. The scene turns the
+     * axis by X 1.673 then Z -28.648 degrees: (-cos a sin c, cos a cos c, sin a). */
+    cr_assert_str_eq(n.part, "top cap");
+    double a = 1.673 * M_PI / 180, c = -28.648 * M_PI / 180;
+    double ax = -cos(a) * sin(c), ay = cos(a) * cos(c), az = sin(a);
+    expect_vec(r->surface.geometric_normal, ax, ay, az, 1e-9, "cap normal");
+    expect_vec(r->normal_used, ax, ay, az, 1e-9, "normal used");
+    cr_expect(r->entering);
+    /* The top cap's centre is the origin (Translation Y -0.5 under a height of 1), radius 1. */
+    rt_vec3 p = r->surface.point;
+    cr_expect(fabs(p.x * ax + p.y * ay + p.z * az) < 1e-9, "point off the cap plane");
+    cr_expect(p.x * p.x + p.y * p.y + p.z * p.z <= 1.0);
+    expect_vec(r->ray.origin, 5, 0, 0, 0, "eye");
+}
+
+Test(debug, floor_box_near_the_bottom)
+{
+    open_scene(corpus("box_cyl_opaque_shadow.yaml"));
+    trace(256, 400, RT_PIXEL_ALL_SAMPLES);
+    const rt_ray_record *r = root();
+    cr_assert(r->hit);
+    rt_hit_names n = rt_pixel_trace_names(&pt, r);
+    cr_expect_str_eq(n.node, "Box");
+    cr_expect_str_eq(n.primitive, "triangle");
+    cr_expect_null(n.part);
+    cr_expect_lt(n.triangle, 12u, "the Cube has 12 triangles");
+    /* The Cube scaled (15, 1, 15) at y = -2: its top face is y = -1.5, normal +Y. */
+    expect_vec(r->surface.geometric_normal, 0, 1, 0, 1e-12, "geometric normal");
+    expect_vec(r->normal_used, 0, 1, 0, 1e-12, "normal used");
+    cr_expect_float_eq(r->surface.point.y, -1.5, 1e-12);
+    /* Lit: the light's shadow ray reaches it unblocked. */
+    cr_assert_neq(pt.first_light[pt.first_root], RT_NO_PARENT);
+    const rt_light_record *l = &pt.log.lights[pt.first_light[pt.first_root]];
+    expect_vec(l->shadow_attenuation, 1, 1, 1, 0, "shadow attenuation");
+    uint32_t s = pt.first_shadow[pt.first_light[pt.first_root]];
+    cr_assert_neq(s, RT_NO_PARENT);
+    cr_expect_not(pt.log.rays[s].hit);
+    cr_expect_eq(pt.log.rays[s].kind, RT_RAY_SHADOW);
+}
+
+Test(debug, floor_in_the_cylinders_shadow)
+{
+    open_scene(corpus("box_cyl_opaque_shadow.yaml"));
+    trace(256, 290, RT_PIXEL_ALL_SAMPLES);
+    cr_assert_str_eq(rt_pixel_trace_names(&pt, root()).node, "Box");
+    uint32_t j = pt.first_light[pt.first_root];
+    cr_assert_neq(j, RT_NO_PARENT);
+    const rt_light_record *l = &pt.log.lights[j];
+    expect_vec(l->shadow_attenuation, 0, 0, 0, 0, "shadow attenuation");
+    expect_vec(l->contribution, 0, 0, 0, 0, "contribution (no ambient)");
+    const rt_ray_record *s = &pt.log.rays[pt.first_shadow[j]];
+    cr_assert(s->hit);
+    rt_hit_names n = rt_pixel_trace_names(&pt, s);
+    cr_expect_str_eq(n.node, "Cylinder");
+    cr_expect_str_eq(n.part, "bottom cap");
+    cr_expect_float_eq(s->surface.point.y, 1.0, 1e-9, "the cylinder's bottom is at y = 1");
+    expect_vec(s->color, 0, 0, 0, 0, "shadow ray attenuation");
+    cr_expect_arr_eq(pt.rgb, ((uint8_t[]){0, 0, 0}), 3);
+}
+
+Test(debug, refraction_through_the_lens)
+{
+    open_scene(corpus("sphere_refract.yaml"));
+    trace(200, 250, RT_PIXEL_ALL_SAMPLES);
+    const rt_ray_record *r = root();
+    cr_assert(r->hit);
+    cr_expect_str_eq(rt_pixel_trace_names(&pt, r).node, "Sphere 1");
+    cr_expect_str_eq(rt_pixel_trace_names(&pt, r).material, "Lens");
+    cr_expect(rt_pixel_trace_material(&pt, r).kt.x > 0);
+    uint32_t c = pt.first_child[pt.first_root];
+    while (c != RT_NO_PARENT && pt.log.rays[c].kind != RT_RAY_REFRACTION) c = pt.next_sibling[c];
+    cr_assert_neq(c, RT_NO_PARENT, "no refraction ray");
+    const rt_ray_record *inside = &pt.log.rays[c];
+    cr_expect_eq(inside->depth, 1u);
+    cr_expect_eq(inside->parent, pt.first_root);
+    cr_assert(inside->hit);
+    /* Inside the glass the ray leaves through the far side: the normal is flipped. */
+    cr_expect_str_eq(rt_pixel_trace_names(&pt, inside).node, "Sphere 1");
+    cr_expect_not(inside->entering);
+    expect_vec(inside->normal_used, -inside->surface.normal.x, -inside->surface.normal.y, -inside->surface.normal.z,
+               0, "flipped normal");
+}
+
+/* ---- The colour is the render's ---- */
+
+static void expect_pixels_match_render(const char *path, const uint32_t (*pixels)[2], int count)
+{
+    rt_image img;
+    char err[RT_ERR_SIZE];
+    cr_assert(rt_test_render(path, 2, true, &img, err, sizeof err), "%s", err);
+    open_scene(path);
+    for (int i = 0; i < count; i++) {
+        uint32_t x = pixels[i][0], y = pixels[i][1];
+        trace(x, y, RT_PIXEL_ALL_SAMPLES);
+        const uint8_t *want = img.rgb + 3 * ((size_t)y * img.width + x);
+        cr_expect_arr_eq(pt.rgb, want, 3, "%s (%u, %u): debug %u %u %u, render %u %u %u", path, x, y, pt.rgb[0],
+                         pt.rgb[1], pt.rgb[2], want[0], want[1], want[2]);
+    }
+    rt_image_free(&img);
+}
+
+Test(debug, bytes_equal_the_render_on_corpus_scenes)
+{
+    static const uint32_t cyl[][2] = {{256, 256}, {10, 10}, {300, 200}, {511, 511}};
+    static const uint32_t shadow[][2] = {{256, 290}, {256, 400}, {256, 215}, {0, 0}, {100, 300}};
+    static const uint32_t refract[][2] = {{200, 250}, {256, 256}, {180, 60}, {150, 220}, {300, 400}};
+    static const uint32_t mirror[][2] = {{256, 256}, {200, 300}, {256, 150}};
+    expect_pixels_match_render(corpus("cyl_diffuse.yaml"), cyl, 4);
+    expect_pixels_match_render(corpus("box_cyl_opaque_shadow.yaml"), shadow, 5);
+    expect_pixels_match_render(corpus("sphere_refract.yaml"), refract, 5);
+    expect_pixels_match_render(corpus("box_cyl_reflect.yaml"), mirror, 3);
+    expect_pixels_match_render(corpus("texture_reflection.yaml"), mirror, 3);
+}
+
+Test(debug, every_pixel_of_an_anti_aliased_scene)
+{
+    rt_image img;
+    char err[RT_ERR_SIZE];
+    cr_assert(rt_test_render(tiny_path, 1, true, &img, err, sizeof err), "%s", err);
+    open_scene(tiny_path);
+    cr_assert_eq(img.width * img.height, 12u * 9u);
+    for (uint32_t y = 0; y < img.height; y++)
+        for (uint32_t x = 0; x < img.width; x++) {
+            trace(x, y, RT_PIXEL_ALL_SAMPLES);
+            cr_expect_arr_eq(pt.rgb, img.rgb + 3 * (y * img.width + x), 3, "pixel (%u, %u)", x, y);
+            /* Four camera rays whose colours average, in order, to the pixel's. */
+            rt_vec3 sum = {0, 0, 0};
+            uint32_t n = 0;
+            for (uint32_t id = pt.first_root; id != RT_NO_PARENT; id = pt.next_sibling[id], n++)
+                sum = rt_v3_add(sum, pt.log.rays[id].color);
+            cr_expect_eq(n, 4u);
+            expect_vec(pt.color, sum.x / 4, sum.y / 4, sum.z / 4, 0, "average of the samples");
+        }
+    rt_image_free(&img);
+}
+
+Test(debug, one_sample_is_that_samples_camera_ray)
+{
+    open_scene(tiny_path);
+    trace(6, 4, RT_PIXEL_ALL_SAMPLES);
+    uint32_t id = pt.first_root;
+    for (int k = 0; k < 2; k++) id = pt.next_sibling[id];
+    rt_ray_record third = pt.log.rays[id];
+    rt_vec3 all = pt.color;
+    trace(6, 4, 2);
+    cr_assert_eq(pt.next_sibling[pt.first_root], RT_NO_PARENT, "one camera ray");
+    const rt_ray_record *r = root();
+    expect_vec(r->ray.direction, third.ray.direction.x, third.ray.direction.y, third.ray.direction.z, 0, "direction");
+    expect_vec(r->color, third.color.x, third.color.y, third.color.z, 0, "colour");
+    expect_vec(pt.color, all.x, all.y, all.z, 0, "the pixel's colour is still the average");
+}
+
+/* Every hit's colour is its emission, plus each light's contribution, plus k_s times the
+ * reflected and k_t times the refracted colour; each light's contribution is its ambient
+ * plus shadow * distance attenuation * light colour * (diffuse + specular). */
+static void expect_terms_add_up(void)
+{
+    const rt_scene *scene = &built.scene;
+    for (uint32_t i = 0; i < pt.log.ray_count; i++) {
+        const rt_ray_record *r = &pt.log.rays[i];
+        if (!r->hit || r->kind == RT_RAY_SHADOW) continue;
+        rt_hit_material m = rt_pixel_trace_material(&pt, r);
+        rt_vec3 sum = r->emissive;
+        for (uint32_t j = pt.first_light[i]; j != RT_NO_PARENT; j = pt.next_light[j]) {
+            const rt_light_record *l = &pt.log.lights[j];
+            rt_vec3 light = rt_v3_scale(rt_v3_mul(l->shadow_attenuation, scene->lights[l->light].color),
+                                        l->distance_attenuation);
+            rt_vec3 want = rt_v3_add(l->ambient, rt_v3_mul(light, rt_v3_add(l->diffuse, l->specular)));
+            expect_vec(l->contribution, want.x, want.y, want.z, 1e-12, "light contribution");
+            sum = rt_v3_add(sum, l->contribution);
+        }
+        for (uint32_t c = pt.first_child[i]; c != RT_NO_PARENT; c = pt.next_sibling[c]) {
+            const rt_ray_record *child = &pt.log.rays[c];
+            rt_vec3 weight = child->kind == RT_RAY_REFLECTION ? m.ks : m.kt;
+            sum = rt_v3_add(sum, rt_v3_mul(weight, child->color));
+        }
+        expect_vec(r->color, sum.x, sum.y, sum.z, 1e-12, "a ray's colour from its terms");
+    }
+}
+
+Test(debug, the_terms_add_up)
+{
+    open_scene(tiny_path);
+    for (uint32_t y = 0; y < 9; y += 2)
+        for (uint32_t x = 0; x < 12; x += 3) {
+            trace(x, y, RT_PIXEL_ALL_SAMPLES);
+            expect_terms_add_up();
+        }
+    open_scene(corpus("sphere_refract.yaml"));
+    trace(200, 250, RT_PIXEL_ALL_SAMPLES);
+    expect_terms_add_up();
+}
+
+Test(debug, a_full_log_cuts_the_tree_not_the_colour)
+{
+    open_scene(corpus("sphere_refract.yaml"));
+    trace(200, 250, RT_PIXEL_ALL_SAMPLES);
+    rt_vec3 full = pt.color;
+    cr_assert_gt(pt.log.ray_count, 3u);
+    rt_pixel_trace_free(&pt);
+    cr_assert(rt_pixel_trace_run(&pt, &built, 200, 250, RT_PIXEL_ALL_SAMPLES, 3));
+    cr_expect(pt.log.overflow);
+    cr_expect_eq(pt.log.ray_count, 3u);
+    expect_vec(pt.color, full.x, full.y, full.z, 0, "colour");
+}
+
+/* ---- The command ---- */
+
+/* Runs `rtk debug` with the arguments up to NULL; its output in *out. */
+static int debug_cmd(char **out, ...)
+{
+    char *argv[24] = {"debug"};
+    int argc = 1;
+    va_list ap;
+    va_start(ap, out);
+    for (const char *s; argc < 23 && (s = va_arg(ap, const char *)) != NULL;) argv[argc++] = (char *)s;
+    va_end(ap);
+    return capture_stdout(rt_cmd_debug, argc, argv, out);
+}
+
+Test(debug, text_names_what_was_hit)
+{
+    char *out;
+    cr_assert_eq(debug_cmd(&out, corpus("box_cyl_opaque_shadow.yaml"), "--pixel", "256,290", NULL), RT_EXIT_OK);
+    cr_assert_not_null(out);
+    cr_expect(strstr(out, "camera ray, depth 0") != NULL, "%s", out);
+    cr_expect(strstr(out, "hit 'Box': triangle ") != NULL, "%s", out);
+    cr_expect(strstr(out, "normal: geometric (0, 1, 0)") != NULL, "%s", out);
+    cr_expect(strstr(out, "material 'Box'") != NULL, "%s", out);
+    cr_expect(strstr(out, "light 0 (point)") != NULL, "%s", out);
+    cr_expect(strstr(out, "shadow ray, depth 0, towards light 0") != NULL, "%s", out);
+    cr_expect(strstr(out, "hit 'Cylinder': cylinder bottom cap") != NULL, "%s", out);
+    cr_expect(strstr(out, "pixel (256, 290): colour (0, 0, 0) -> bytes 0 0 0\n") != NULL, "%s", out);
+    free(out);
+}
+
+Test(debug, json_parses)
+{
+    static const char *const pixels[] = {"200,250", "0,0", "256,256", "100,400"};
+    for (int i = 0; i < 4; i++) {
+        char *out;
+        cr_assert_eq(debug_cmd(&out, corpus("sphere_refract.yaml"), "--json", "--pixel", pixels[i], NULL), RT_EXIT_OK);
+        cr_assert_not_null(out);
+        cr_expect(json_is_valid(out), "pixel %s: not JSON:\n%s", pixels[i], out);
+        free(out);
+    }
+    char *out;
+    cr_assert_eq(debug_cmd(&out, tiny_path, "--json", "--pixel", "6,4", "--sample", "3", NULL), RT_EXIT_OK);
+    cr_expect(json_is_valid(out), "%s", out);
+    cr_expect(strstr(out, "\"sample\": 3") != NULL, "%s", out);
+    cr_expect(strstr(out, "\"samples_per_pixel\": 4") != NULL, "%s", out);
+    free(out);
+    cr_assert_eq(debug_cmd(&out, corpus("sphere_refract.yaml"), "--pixel", "200,250", "--json", NULL), RT_EXIT_OK);
+    cr_expect(strstr(out, "\"node\": \"Sphere 1\"") != NULL, "%s", out);
+    cr_expect(strstr(out, "\"kind\": \"refraction\"") != NULL, "%s", out);
+    free(out);
+}
+
+Test(debug, json_checker_rejects_what_it_should)
+{
+    static const char *const bad[] = {"", "{", "{\"a\" 1}", "[1,]", "nan", "[01]", "{\"a\": 1} x", "\"\\q\"", "[1.]"};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) cr_expect_not(json_is_valid(bad[i]), "%s", bad[i]);
+    cr_expect(json_is_valid(" {\"a\": [1, -2.5e-3, true, null, \"\\u00e9\"]} "));
+}
+
+/* The base64 between `data:image/png;base64,` and the closing quote, decoded. */
+static size_t embedded_png(const char *svg, uint8_t *out, size_t cap)
+{
+    static const char digits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    const char *p = strstr(svg, "data:image/png;base64,");
+    cr_assert_not_null(p);
+    p += strlen("data:image/png;base64,");
+    size_t n = 0;
+    uint32_t acc = 0;
+    int bits = 0;
+    for (; *p && *p != '"' && *p != '='; p++) {
+        const char *d = strchr(digits, *p);
+        cr_assert(d && *d, "not base64: %c", *p);
+        acc = (acc << 6) | (uint32_t)(d - digits);
+        bits += 6;
+        if (bits >= 8) {
+            bits -= 8;
+            cr_assert_lt(n, cap);
+            out[n++] = (uint8_t)(acc >> bits);
+        }
+    }
+    return n;
+}
+
+Test(debug, svg_embeds_the_render_and_draws_the_rays)
+{
+    char svg_path[160], png_path[160], err[RT_ERR_SIZE];
+    snprintf(svg_path, sizeof svg_path, "%s/tree.svg", dir);
+    snprintf(png_path, sizeof png_path, "%s/embedded.png", dir);
+    char *out;
+    cr_assert_eq(debug_cmd(&out, corpus("sphere_refract.yaml"), "--pixel", "200,250", "--svg", svg_path, NULL),
+                 RT_EXIT_OK);
+    free(out);
+    FILE *f = fopen(svg_path, "rb");
+    cr_assert_not_null(f);
+    static char svg[1 << 22];
+    size_t n = fread(svg, 1, sizeof svg - 1, f);
+    fclose(f);
+    svg[n] = '\0';
+    cr_expect(strncmp(svg, "<?xml", 5) == 0);
+    cr_expect(strstr(svg, "</svg>\n") == svg + n - 7, "the document ends with </svg>");
+    cr_expect(strstr(svg, "class=\"ray camera\"") != NULL);
+    cr_expect(strstr(svg, "class=\"ray refraction\"") != NULL);
+    cr_expect(strstr(svg, "class=\"ray shadow\"") != NULL);
+    cr_expect(strstr(svg, "<ellipse class=\"quadric\"") != NULL, "the lens's outline");
+    static uint8_t png[1 << 21];
+    size_t png_size = embedded_png(svg, png, sizeof png);
+    f = fopen(png_path, "wb");
+    cr_assert_eq(fwrite(png, 1, png_size, f), png_size);
+    fclose(f);
+    rt_image shown, rendered;
+    cr_assert(rt_image_read(png_path, &shown, err, sizeof err), "%s", err);
+    cr_assert(rt_test_render(corpus("sphere_refract.yaml"), 2, true, &rendered, err, sizeof err), "%s", err);
+    cr_assert(shown.width == rendered.width && shown.height == rendered.height);
+    cr_expect_arr_eq(shown.rgb, rendered.rgb, (size_t)shown.width * shown.height * 3, "the embedded image");
+    rt_image_free(&shown);
+    rt_image_free(&rendered);
+}
+
+Test(debug, mesh_scene_svg_draws_triangle_edges)
+{
+    char svg_path[160];
+    snprintf(svg_path, sizeof svg_path, "%s/tiny.svg", dir);
+    char *out;
+    cr_assert_eq(debug_cmd(&out, tiny_path, "--pixel", "6,6", "--svg", svg_path, NULL), RT_EXIT_OK);
+    free(out);
+    FILE *f = fopen(svg_path, "rb");
+    cr_assert_not_null(f);
+    static char svg[1 << 20];
+    svg[fread(svg, 1, sizeof svg - 1, f)] = '\0';
+    fclose(f);
+    cr_expect(strstr(svg, "<path class=\"mesh\" d=\"M") != NULL, "the floor's triangles");
+    cr_expect(strstr(svg, "<circle class=\"light\"") != NULL, "the lamp");
+}
+
+Test(debug, bad_arguments_are_usage_errors)
+{
+    static const char *const pixels[] = {"512,0", "0,512", "-1,0", "1", "1,2,3", "a,b", "", ",", "1,", "4294967296,1"};
+    const char *scene = corpus("cyl_diffuse.yaml");
+    char *out;
+    for (size_t i = 0; i < sizeof pixels / sizeof pixels[0]; i++) {
+        cr_expect_eq(debug_cmd(&out, scene, "--pixel", pixels[i], NULL), RT_EXIT_USAGE, "--pixel '%s'", pixels[i]);
+        free(out);
+    }
+    cr_expect_eq(debug_cmd(&out, scene, "--pixel", "511,511", NULL), RT_EXIT_OK);
+    free(out);
+    cr_expect_eq(debug_cmd(&out, scene, "--pixel", "600,10", "--width", "601", NULL), RT_EXIT_OK, "--width widens");
+    free(out);
+    cr_expect_eq(debug_cmd(&out, scene, NULL), RT_EXIT_USAGE, "no --pixel");
+    free(out);
+    cr_expect_eq(debug_cmd(&out, "--pixel", "1,1", NULL), RT_EXIT_USAGE, "no scene");
+    free(out);
+    cr_expect_eq(debug_cmd(&out, scene, "--pixel", "1,1", "--sample", "1", NULL), RT_EXIT_USAGE, "1 sample only");
+    free(out);
+    cr_expect_eq(debug_cmd(&out, tiny_path, "--pixel", "1,1", "--sample", "3", NULL), RT_EXIT_OK);
+    free(out);
+    cr_expect_eq(debug_cmd(&out, scene, "--pixel", "1,1", "--bogus", NULL), RT_EXIT_USAGE);
+    free(out);
+}
+
+Test(debug, unreadable_scene_and_unwritable_svg)
+{
+    char missing[160], bad_svg[160];
+    snprintf(missing, sizeof missing, "%s/none.yaml", dir);
+    snprintf(bad_svg, sizeof bad_svg, "%s/no/such/folder/tree.svg", dir);
+    char *out;
+    cr_expect_eq(debug_cmd(&out, missing, "--pixel", "1,1", NULL), RT_EXIT_INPUT);
+    free(out);
+    cr_expect_eq(debug_cmd(&out, tiny_path, "--pixel", "1,1", "--svg", bad_svg, NULL), RT_EXIT_OUTPUT);
+    free(out);
+    cr_expect_eq(tmpdir_count(dir), 1, "only tiny.yaml: no partial SVG left behind");
+}
