@@ -1,0 +1,137 @@
+/* rt_real as signed 64-bit fixed point, Q32.32: value = raw / 2^32, so the range is
+ * about +-2.1e9 (scene coordinates up to 1e4, squared distances up to 1e8 and more)
+ * with a resolution of 2^-32 = 2.3e-10. Every operation rounds to nearest (halves away
+ * from zero, so negation commutes with rounding) and saturates at +-RT_REAL_MAX
+ * instead of wrapping; nothing here is undefined behaviour, and nothing uses the FPU
+ * except the two host conversions at the end. See docs/fixed-point.md.
+ * Included only through real.h. */
+#ifndef RT_REAL_FIXED_H
+#define RT_REAL_FIXED_H
+
+typedef int64_t rt_real;
+
+#define RT_REAL_NAME "fixed"
+/* A compile-time constant from a decimal literal: round(x * 2^32), saturated. It folds
+ * to an integer at compile time, so no floating-point instruction is emitted. */
+#define RT_C(x)                                                                        \
+    ((rt_real)((x) >= 2147483648.0    ? INT64_MAX                                       \
+               : (x) <= -2147483648.0 ? -INT64_MAX                                      \
+                                      : (int64_t)((x) * 4294967296.0 + ((x) < 0 ? -0.5 : 0.5))))
+#define RT_ZERO ((rt_real)0)
+#define RT_ONE ((rt_real)INT64_C(0x100000000))
+#define RT_PI RT_C(3.14159265358979323846)
+/* The saturation rail (about 2^31): "no hit yet" distances start here. The range is
+ * symmetric, [-RT_REAL_MAX, RT_REAL_MAX]; INT64_MIN is never produced. */
+#define RT_REAL_MAX ((rt_real)INT64_MAX)
+
+/* a * b as 128 bits: the high half is returned, the low half stored in *lo. */
+static inline uint64_t rt_fx_umul128(uint64_t a, uint64_t b, uint64_t *lo)
+{
+#if defined(__SIZEOF_INT128__) && !defined(RT_FIXED_PORTABLE)
+    unsigned __int128 p = (unsigned __int128)a * b;
+    *lo = (uint64_t)p;
+    return (uint64_t)(p >> 64);
+#else /* 32-bit targets (i686, arm): schoolbook on 32-bit halves, same result */
+    uint64_t a0 = (uint32_t)a, a1 = a >> 32, b0 = (uint32_t)b, b1 = b >> 32;
+    uint64_t p00 = a0 * b0, p01 = a0 * b1, p10 = a1 * b0, p11 = a1 * b1;
+    uint64_t mid = (p00 >> 32) + (uint32_t)p01 + (uint32_t)p10; /* < 3 * 2^32 */
+    *lo = mid << 32 | (uint32_t)p00;
+    return p11 + (p01 >> 32) + (p10 >> 32) + (mid >> 32);
+#endif
+}
+
+/* round(a * b / 2^shift) for 1 <= shift <= 64, halves up; UINT64_MAX when it does not fit. */
+static inline uint64_t rt_fx_umulshift(uint64_t a, uint64_t b, unsigned shift)
+{
+    uint64_t lo, hi = rt_fx_umul128(a, b, &lo);
+    if (shift < 64 && hi >> shift) return UINT64_MAX;
+    uint64_t q = shift == 64 ? hi : hi << (64 - shift) | lo >> shift;
+    return q == UINT64_MAX ? UINT64_MAX : q + (lo >> (shift - 1) & 1);
+}
+
+/* |a| without overflow (|INT64_MIN| = 2^63). */
+static inline uint64_t rt_fx_mag(int64_t a) { return a < 0 ? 0u - (uint64_t)a : (uint64_t)a; }
+
+/* The value with magnitude mag and the given sign, saturated to +-RT_REAL_MAX. */
+static inline rt_real rt_fx_signed(uint64_t mag, bool negative)
+{
+    int64_t m = mag > (uint64_t)INT64_MAX ? INT64_MAX : (int64_t)mag;
+    return negative ? -m : m;
+}
+
+static inline rt_real rt_add(rt_real a, rt_real b)
+{
+    rt_real r;
+    if (__builtin_add_overflow(a, b, &r)) return a < 0 ? -RT_REAL_MAX : RT_REAL_MAX;
+    return r == INT64_MIN ? -RT_REAL_MAX : r;
+}
+
+static inline rt_real rt_sub(rt_real a, rt_real b)
+{
+    rt_real r;
+    if (__builtin_sub_overflow(a, b, &r)) return a < 0 ? -RT_REAL_MAX : RT_REAL_MAX;
+    return r == INT64_MIN ? -RT_REAL_MAX : r;
+}
+
+static inline rt_real rt_mul(rt_real a, rt_real b)
+{
+    return rt_fx_signed(rt_fx_umulshift(rt_fx_mag(a), rt_fx_mag(b), 32), (a < 0) != (b < 0));
+}
+
+/* Rounded to nearest; x / 0 saturates to +-RT_REAL_MAX by the sign of x, and 0 / 0 = 0. */
+rt_real rt_div(rt_real a, rt_real b);
+
+static inline rt_real rt_neg(rt_real a) { return a == INT64_MIN ? RT_REAL_MAX : -a; }
+
+static inline rt_real rt_from_int(int64_t i)
+{
+    if (i > INT32_MAX) return RT_REAL_MAX;
+    if (i <= INT32_MIN) return -RT_REAL_MAX; /* -2^31 itself is one unit beyond the rail */
+    return i * INT64_C(0x100000000);
+}
+
+/* Correctly rounded square root; 0 for a <= 0 (as in the double build). */
+rt_real rt_sqrt(rt_real a);
+
+/* Largest integer <= a (the high word); always within the int32 range. */
+static inline int32_t rt_floor_int(rt_real a)
+{
+    uint32_t hi = (uint32_t)((uint64_t)a >> 32); /* two's complement: floor(a / 2^32) mod 2^32 */
+    return hi <= INT32_MAX ? (int32_t)hi : (int32_t)(hi - 2147483648u) - INT32_MAX - 1;
+}
+
+/* True when a is strictly inside the saturation rails (a saturated result means overflow). */
+static inline bool rt_is_finite(rt_real a) { return a > -RT_REAL_MAX && a < RT_REAL_MAX; }
+
+/* floor(255 * c) for c in [0, 1] (exact), clamped to 0..255 outside. */
+static inline uint8_t rt_unit_to_byte(rt_real c)
+{
+    if (c <= RT_ZERO) return 0;
+    if (c >= RT_ONE) return 255;
+    return (uint8_t)((uint64_t)c * 255u >> 32);
+}
+
+/* The value's 64 bits (two's complement), for blobs (core/blob.c); exact both ways. */
+static inline uint64_t rt_real_to_bits(rt_real a) { return (uint64_t)a; }
+static inline rt_real rt_real_from_bits(uint64_t bits)
+{
+    return bits <= INT64_MAX ? (rt_real)bits : -(rt_real)~bits - 1;
+}
+
+/* Host-side conversion for loaders and tests; never called by the core (they are the
+ * only floating-point code here). round(d * 2^32), saturated; NaN gives 0. */
+static inline rt_real rt_from_double(double d)
+{
+    if (d != d) return RT_ZERO;
+    if (d >= 2147483648.0) return RT_REAL_MAX;
+    if (d <= -2147483648.0) return -RT_REAL_MAX;
+    double v = d * 4294967296.0; /* exact */
+    int64_t i = (int64_t)v;      /* truncated; v - i is exact */
+    if (v - (double)i >= 0.5) i++;
+    if (v - (double)i <= -0.5) i--;
+    return i == INT64_MIN ? -RT_REAL_MAX : i;
+}
+
+static inline double rt_to_double(rt_real a) { return (double)a * 0x1p-32; }
+
+#endif

@@ -1,0 +1,341 @@
+/* The Q32.32 backend (core/real_fixed.h, core/real_fixed.c): arithmetic exactly against
+ * 128-bit references, elementary functions against long double libm on deterministic
+ * samples. Compiled only in the fixed build (make RT_REAL=fixed). */
+#ifdef RT_REAL_FIXED
+
+#include <criterion/criterion.h>
+#include <math.h>
+
+#include "real.h"
+
+#define LSB 0x1p-32L
+/* The bounds documented in core/real_fixed.c, in lsb (2^-32), given the exact result ref. */
+#define ROUNDED 0.5L
+static long double sin_cos_bound(long double ref) { (void)ref; return ROUNDED + 0x1p-26L; }
+static long double tan_bound(long double ref) { return ROUNDED + 0x1p-27L * (1.0L + ref * ref); }
+static long double exp_bound(long double ref) { return ROUNDED + 0x1p-26L + fabsl(ref) * 0x1p-59L / LSB; }
+static long double log_bound(long double ref) { (void)ref; return ROUNDED + 0x1p-26L; }
+static long double pow_bound(long double ref, long double e)
+{
+    return ROUNDED + 0x1p-26L + fabsl(ref) * (fabsl(e) * 0x1p-57L + 0x1p-59L) / LSB;
+}
+
+/* 64-bit LCG (Knuth's MMIX constants): the same samples on every run and platform. */
+typedef struct { uint64_t s; } lcg;
+static uint64_t lcg_next(lcg *g)
+{
+    g->s = g->s * 6364136223846793005u + 1442695040888963407u;
+    return g->s;
+}
+/* A raw value uniform in [lo, hi] (given as reals). */
+static rt_real lcg_real(lcg *g, long double lo, long double hi)
+{
+    uint64_t span = (uint64_t)((hi - lo) / LSB);
+    return (rt_real)(lo / LSB) + (rt_real)(lcg_next(g) % (span + 1));
+}
+/* A raw value with a random number of significant bits, so every magnitude appears. */
+static rt_real lcg_any(lcg *g)
+{
+    uint64_t u = lcg_next(g) >> (lcg_next(g) % 64);
+    rt_real a = (rt_real)(u >> 1);
+    return lcg_next(g) & 1 ? -a : a;
+}
+
+static long double real_of(rt_real a) { return (long double)a * LSB; } /* exact with a 64-bit mantissa */
+static long double lsb_error(rt_real got, long double ref) { return fabsl((long double)got - ref / LSB); }
+
+typedef struct {
+    const char *name;
+    rt_real (*f)(rt_real);
+    long double (*ref)(long double);
+    long double (*bound)(long double);
+} unary_case;
+
+/* Max error (over the bound) of c on n samples of gen; fails naming the worst input. */
+static void check_unary(unary_case c, lcg g, rt_real (*gen)(lcg *), int n)
+{
+    long double worst = 0.0L, worst_ratio = 0.0L;
+    rt_real worst_x = 0;
+    for (int i = 0; i < n; i++) {
+        rt_real x = gen(&g);
+        long double ref = c.ref(real_of(x));
+        long double err = lsb_error(c.f(x), ref), ratio = err / c.bound(ref);
+        if (ratio > worst_ratio) {
+            worst_ratio = ratio;
+            worst = err;
+            worst_x = x;
+        }
+    }
+    cr_log_info("%s: max %.6Lf lsb (%.4Lf of the bound) at %.12Lf", c.name, worst, worst_ratio, real_of(worst_x));
+    cr_assert(worst_ratio <= 1.0L, "%s: %.6Lf lsb at x = %.12Lf (raw %lld)", c.name, worst, real_of(worst_x),
+              (long long)worst_x);
+}
+
+static rt_real gen_pm1e4(lcg *g) { return lcg_real(g, -1e4L, 1e4L); }
+static rt_real gen_pm2pi(lcg *g) { return lcg_real(g, -6.3L, 6.3L); }
+static rt_real gen_tan_domain(lcg *g) { return lcg_real(g, -1.5707L, 1.5707L); }
+static rt_real gen_exp_range(lcg *g) { return lcg_real(g, -23.0L, 21.48L); }
+static rt_real gen_positive(lcg *g)
+{
+    rt_real a = lcg_any(g);
+    return a > 0 ? a : a < 0 ? -a : 1;
+}
+static rt_real gen_near_one(lcg *g) { return RT_ONE + lcg_real(g, -1e-3L, 1e-3L); }
+
+static const unary_case sin_case = {"sin", rt_sin, sinl, sin_cos_bound};
+static const unary_case cos_case = {"cos", rt_cos, cosl, sin_cos_bound};
+static const unary_case tan_case = {"tan", rt_tan, tanl, tan_bound};
+static const unary_case exp_case = {"exp", rt_exp, expl, exp_bound};
+static const unary_case log_case = {"log", rt_log, logl, log_bound};
+
+/* ---- representation and arithmetic ---------------------------------------------- */
+
+/* RT_C must be usable where only constant expressions are allowed. */
+static const rt_real constants[] = {RT_C(1.5), RT_C(-0.25), RT_C(1e30), RT_C(-1e30), RT_PI, RT_C(1e-10)};
+
+Test(real_fixed, constants_are_rounded_and_saturated)
+{
+    cr_assert_eq(constants[0], INT64_C(3) << 31);
+    cr_assert_eq(constants[1], -(INT64_C(1) << 30));
+    cr_assert_eq(constants[2], RT_REAL_MAX);
+    cr_assert_eq(constants[3], -RT_REAL_MAX);
+    cr_assert_eq(constants[4], INT64_C(13493037705)); /* round(pi * 2^32) = 13493037704.52 -> up */
+    cr_assert_eq(constants[5], 0);                    /* 1e-10 * 2^32 = 0.43 */
+    cr_assert_eq(RT_ONE, rt_from_int(1));
+    cr_assert_eq(rt_from_int(-7), -7 * RT_ONE);
+    cr_assert_eq(rt_from_int(INT64_C(1) << 40), RT_REAL_MAX);
+    cr_assert_eq(rt_from_int(INT32_MIN), -RT_REAL_MAX);
+}
+
+Test(real_fixed, add_and_sub_saturate_symmetrically)
+{
+    cr_assert_eq(rt_add(RT_REAL_MAX, RT_ONE), RT_REAL_MAX);
+    cr_assert_eq(rt_add(-RT_REAL_MAX, -RT_ONE), -RT_REAL_MAX);
+    cr_assert_eq(rt_add(-RT_REAL_MAX, -1), -RT_REAL_MAX); /* would be INT64_MIN */
+    cr_assert_eq(rt_sub(RT_REAL_MAX, -RT_ONE), RT_REAL_MAX);
+    cr_assert_eq(rt_sub(-RT_REAL_MAX, RT_ONE), -RT_REAL_MAX);
+    cr_assert_eq(rt_sub(-RT_REAL_MAX, 1), -RT_REAL_MAX);
+    cr_assert_eq(rt_add(RT_C(1.25), RT_C(-3.5)), RT_C(-2.25));
+    cr_assert_eq(rt_neg(INT64_MIN), RT_REAL_MAX);
+    cr_assert_eq(rt_abs(-RT_REAL_MAX), RT_REAL_MAX);
+    cr_assert(!rt_is_finite(RT_REAL_MAX) && !rt_is_finite(-RT_REAL_MAX) && rt_is_finite(RT_C(-2e9)));
+}
+
+#ifdef __SIZEOF_INT128__
+/* Exact references: round half away from zero of n / d on 128-bit magnitudes. */
+static __int128 round_div(__int128 n, __int128 d)
+{
+    bool neg = (n < 0) != (d < 0);
+    unsigned __int128 un = n < 0 ? -(unsigned __int128)n : (unsigned __int128)n;
+    unsigned __int128 ud = d < 0 ? -(unsigned __int128)d : (unsigned __int128)d;
+    unsigned __int128 q = un / ud, r = un % ud;
+    if (2 * r >= ud) q++;
+    return neg ? -(__int128)q : (__int128)q;
+}
+static rt_real saturate(__int128 v) { return v > INT64_MAX ? RT_REAL_MAX : v < -INT64_MAX ? -RT_REAL_MAX : (rt_real)v; }
+#endif
+
+Test(real_fixed, mul_rounds_to_nearest_and_saturates)
+{
+#ifdef __SIZEOF_INT128__
+    lcg g = {1};
+    for (int i = 0; i < 200000; i++) {
+        rt_real a = lcg_any(&g), b = lcg_any(&g);
+        rt_real want = saturate(round_div((__int128)a * b, (__int128)1 << 32));
+        cr_assert_eq(rt_mul(a, b), want, "%lld * %lld", (long long)a, (long long)b);
+        cr_assert_eq(rt_mul(rt_neg(a), b), rt_neg(rt_mul(a, b)));
+    }
+#endif
+    cr_assert_eq(rt_mul(RT_C(1.5), RT_C(-2.5)), RT_C(-3.75));
+    cr_assert_eq(rt_mul(1, RT_C(0.5)), 1);   /* 0.5 lsb rounds away from zero */
+    cr_assert_eq(rt_mul(-1, RT_C(0.5)), -1);
+    cr_assert_eq(rt_mul(1, RT_C(0.25)), 0);
+    cr_assert_eq(rt_mul(RT_C(1e5), RT_C(1e5)), RT_REAL_MAX);
+    cr_assert_eq(rt_mul(RT_C(-1e5), RT_C(1e5)), -RT_REAL_MAX);
+    cr_assert_eq(rt_mul(RT_REAL_MAX, RT_REAL_MAX), RT_REAL_MAX);
+}
+
+Test(real_fixed, div_rounds_to_nearest_and_saturates)
+{
+#ifdef __SIZEOF_INT128__
+    lcg g = {2};
+    for (int i = 0; i < 200000; i++) {
+        rt_real a = lcg_any(&g), b = lcg_any(&g);
+        if (b == 0) continue;
+        rt_real want = saturate(round_div((__int128)a * ((__int128)1 << 32), b));
+        cr_assert_eq(rt_div(a, b), want, "%lld / %lld", (long long)a, (long long)b);
+    }
+#endif
+    cr_assert_eq(rt_div(RT_ONE, RT_C(3.0)), INT64_C(1431655765)); /* 2^32 / 3 = 1431655765.33 */
+    cr_assert_eq(rt_div(RT_C(-7.5), RT_C(2.5)), RT_C(-3.0));
+    cr_assert_eq(rt_div(RT_ONE, 0), RT_REAL_MAX);
+    cr_assert_eq(rt_div(-RT_ONE, 0), -RT_REAL_MAX);
+    cr_assert_eq(rt_div(0, 0), 0);
+    cr_assert_eq(rt_div(RT_C(1e9), RT_C(0.01)), RT_REAL_MAX);
+    cr_assert_eq(rt_div(RT_C(1e9), RT_C(-0.01)), -RT_REAL_MAX);
+    cr_assert_eq(rt_div(RT_REAL_MAX, RT_REAL_MAX), RT_ONE);
+}
+
+Test(real_fixed, sqrt_is_correctly_rounded)
+{
+    lcg g = {3};
+    for (int i = 0; i < 200000; i++) {
+        rt_real a = gen_positive(&g), r = rt_sqrt(a);
+#ifdef __SIZEOF_INT128__
+        /* r correctly rounded <=> (2r - 1)^2 <= 4 a 2^32 < (2r + 1)^2 (no ties: the left side is odd) */
+        unsigned __int128 n4 = (unsigned __int128)a << 34, lo = 2 * (unsigned __int128)r - 1, hi = lo + 2;
+        cr_assert(lo * lo <= n4 && n4 < hi * hi, "sqrt of raw %lld gave %lld", (long long)a, (long long)r);
+#else
+        cr_assert(lsb_error(r, sqrtl(real_of(a))) <= ROUNDED + 0x1p-20L);
+#endif
+    }
+    cr_assert_eq(rt_sqrt(RT_C(4.0)), RT_C(2.0));
+    cr_assert_eq(rt_sqrt(RT_C(2.25)), RT_C(1.5));
+    cr_assert_eq(rt_sqrt(0), 0);
+    cr_assert_eq(rt_sqrt(-RT_ONE), 0);
+    cr_assert_eq(rt_sqrt(1), 65536); /* sqrt(2^-32) = 2^-16 */
+    cr_assert_eq(rt_sqrt(RT_REAL_MAX), INT64_C(199032864766430)); /* round(sqrt(2^63 - 1) * 2^16) */
+}
+
+Test(real_fixed, floor_int_and_unit_to_byte)
+{
+    cr_assert_eq(rt_floor_int(RT_C(2.75)), 2);
+    cr_assert_eq(rt_floor_int(RT_C(-0.5)), -1);
+    cr_assert_eq(rt_floor_int(RT_C(-3.0)), -3);
+    cr_assert_eq(rt_floor_int(-1), -1);
+    cr_assert_eq(rt_floor_int(RT_REAL_MAX), INT32_MAX);
+    cr_assert_eq(rt_floor_int(-RT_REAL_MAX), INT32_MIN);
+    for (int64_t k = 1; k <= 255; k++) {
+        rt_real first = (rt_real)((k << 32) + 254) / 255; /* smallest raw c with floor(255 c) = k */
+        cr_assert_eq(rt_unit_to_byte(first), k);
+        cr_assert_eq(rt_unit_to_byte(first - 1), k - 1);
+    }
+    cr_assert_eq(rt_unit_to_byte(RT_ONE), 255);
+    cr_assert_eq(rt_unit_to_byte(RT_C(7.0)), 255);
+    cr_assert_eq(rt_unit_to_byte(RT_C(-0.5)), 0);
+}
+
+Test(real_fixed, host_conversions)
+{
+    cr_assert_eq(rt_from_double(1.5), RT_C(1.5));
+    cr_assert_eq(rt_from_double(-0x1p-33), -1);      /* -0.5 lsb rounds away from zero */
+    cr_assert_eq(rt_from_double(0x1p-34), 0);
+    cr_assert_eq(rt_from_double(3e9), RT_REAL_MAX);
+    cr_assert_eq(rt_from_double(-INFINITY), -RT_REAL_MAX);
+    cr_assert_eq(rt_from_double(NAN), 0);
+    cr_assert(rt_to_double(RT_C(-2.5)) == -2.5);
+    cr_assert_eq(rt_real_to_bits(RT_C(-1.0)), UINT64_C(0xffffffff00000000));
+    cr_assert_eq(rt_real_from_bits(UINT64_C(0xffffffff00000000)), RT_C(-1.0));
+    cr_assert_eq(rt_real_from_bits(rt_real_to_bits(INT64_MIN)), INT64_MIN);
+    lcg g = {4};
+    for (int i = 0; i < 10000; i++) {
+        rt_real a = lcg_real(&g, -1e6L, 1e6L); /* below 2^53 raw: the round trip is exact */
+        cr_assert_eq(rt_from_double(rt_to_double(a)), a);
+    }
+}
+
+/* ---- elementary functions --------------------------------------------------------- */
+
+Test(real_fixed, sin_cos_within_bound)
+{
+    check_unary(sin_case, (lcg){10}, gen_pm1e4, 200000);
+    check_unary(cos_case, (lcg){11}, gen_pm1e4, 200000);
+    check_unary(sin_case, (lcg){12}, gen_pm2pi, 100000);
+    check_unary(cos_case, (lcg){13}, gen_pm2pi, 100000);
+    check_unary(sin_case, (lcg){14}, lcg_any, 100000); /* the whole range, up to 2^31 */
+    check_unary(cos_case, (lcg){15}, lcg_any, 100000);
+}
+
+Test(real_fixed, tan_within_bound)
+{
+    check_unary(tan_case, (lcg){16}, gen_tan_domain, 200000);
+    check_unary(tan_case, (lcg){17}, gen_pm1e4, 200000);
+}
+
+Test(real_fixed, exp_within_bound)
+{
+    check_unary(exp_case, (lcg){20}, gen_exp_range, 300000);
+    check_unary(exp_case, (lcg){21}, gen_pm2pi, 100000);
+}
+
+Test(real_fixed, log_within_bound)
+{
+    check_unary(log_case, (lcg){30}, gen_positive, 300000);
+    check_unary(log_case, (lcg){31}, gen_near_one, 100000);
+}
+
+/* pow over the Blinn-Phong domain: base in (0, 1], e in [0, 1000]. */
+Test(real_fixed, pow_within_bound_on_specular_domain)
+{
+    lcg g = {40};
+    long double worst = 0.0L, worst_ratio = 0.0L;
+    rt_real wx = 0, wy = 0;
+    for (int i = 0; i < 300000; i++) {
+        rt_real x = i % 2 ? lcg_real(&g, 0.0L, 1.0L) : RT_ONE - lcg_real(&g, 0.0L, 1e-4L);
+        rt_real y = i % 5 ? lcg_real(&g, 0.0L, 1000.0L) : rt_from_int((int64_t)(lcg_next(&g) % 1001));
+        if (x == 0) continue;
+        long double ref = powl(real_of(x), real_of(y));
+        long double err = lsb_error(rt_pow(x, y), ref), ratio = err / pow_bound(ref, real_of(y));
+        if (ratio > worst_ratio) {
+            worst_ratio = ratio;
+            worst = err;
+            wx = x;
+            wy = y;
+        }
+    }
+    cr_log_info("pow: max %.6Lf lsb (%.4Lf of the bound) at %.12Lf ^ %.6Lf", worst, worst_ratio, real_of(wx), real_of(wy));
+    cr_assert(worst_ratio <= 1.0L, "pow: %.6Lf lsb at %.12Lf ^ %.6Lf", worst, real_of(wx), real_of(wy));
+}
+
+/* Other bases: the error grows with |e log base| (exp of a Q58 argument known to |e| 2^-57). */
+Test(real_fixed, pow_within_bound_on_other_bases)
+{
+    lcg g = {41};
+    for (int i = 0; i < 100000; i++) {
+        rt_real x = lcg_real(&g, 0.5L, 4.0L), y = lcg_real(&g, -20.0L, 20.0L);
+        long double ref = powl(real_of(x), real_of(y));
+        if (ref > 2e9L) continue;
+        long double err = lsb_error(rt_pow(x, y), ref);
+        cr_assert(err <= pow_bound(ref, real_of(y)), "pow: %.3Lf lsb at %.12Lf ^ %.12Lf", err, real_of(x), real_of(y));
+    }
+}
+
+Test(real_fixed, elementary_special_values)
+{
+    cr_assert_eq(rt_sin(0), 0);
+    cr_assert_eq(rt_cos(0), RT_ONE);
+    cr_assert_eq(rt_tan(0), 0);
+    cr_assert_eq(rt_exp(0), RT_ONE);
+    cr_assert_eq(rt_exp(RT_C(30.0)), RT_REAL_MAX);
+    cr_assert_eq(rt_exp(RT_C(-30.0)), 0);
+    cr_assert_eq(rt_exp(RT_REAL_MAX), RT_REAL_MAX);
+    cr_assert_eq(rt_exp(-RT_REAL_MAX), 0);
+    cr_assert_eq(rt_log(RT_ONE), 0);
+    cr_assert_eq(rt_log(0), -RT_REAL_MAX);
+    cr_assert_eq(rt_log(-RT_ONE), -RT_REAL_MAX);
+    cr_assert(lsb_error(rt_log(1), logl(LSB)) <= ROUNDED);
+    cr_assert(lsb_error(rt_log(RT_REAL_MAX), logl(real_of(RT_REAL_MAX))) <= ROUNDED + 0x1p-20L);
+    cr_assert_eq(rt_pow(0, 0), RT_ONE);
+    cr_assert_eq(rt_pow(0, RT_C(2.5)), 0);
+    cr_assert_eq(rt_pow(-RT_ONE, RT_C(2.0)), 0);
+    cr_assert_eq(rt_pow(0, RT_C(-1.0)), RT_REAL_MAX);
+    cr_assert_eq(rt_pow(RT_C(0.37), 0), RT_ONE);
+    cr_assert_eq(rt_pow(RT_ONE, RT_C(1000.0)), RT_ONE);
+    cr_assert_eq(rt_pow(RT_C(0.5), RT_C(2.0)), RT_C(0.25));
+    cr_assert_eq(rt_pow(RT_C(2.0), RT_C(10.0)), RT_C(1024.0));
+    cr_assert_eq(rt_pow(RT_C(10.0), RT_C(10.0)), RT_REAL_MAX);
+    cr_assert_eq(rt_pow(1, RT_C(1000.0)), 0);
+}
+
+Test(real_fixed, trig_exact_symmetry)
+{
+    lcg g = {50};
+    for (int i = 0; i < 50000; i++) {
+        rt_real x = lcg_any(&g);
+        cr_assert_eq(rt_sin(rt_neg(x)), rt_neg(rt_sin(x)));
+        cr_assert_eq(rt_cos(rt_neg(x)), rt_cos(x));
+        cr_assert_eq(rt_tan(rt_neg(x)), rt_neg(rt_tan(x)));
+    }
+}
+
+#endif
