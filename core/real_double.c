@@ -377,7 +377,7 @@ rt_real rt_log(rt_real x)
 }
 
 /* exp(e * log(base)) with the product formed as a double-double, so the result stays
- * within about 1 ulp even when |e log(base)| is large. Max error 0.82 ulp measured for
+ * within about 1 ulp even when |e log(base)| is large. Max error 0.83 ulp measured for
  * base in (0, 1], e in [0, 1000]. Defined cases: pow(x, 0) = 1 (also 0^0 and NaN^0),
  * pow(0, e > 0) = 0, pow(0, e < 0) = inf, pow(1, e) = 1; base < 0 or a NaN gives NaN. */
 rt_real rt_pow(rt_real base, rt_real e)
