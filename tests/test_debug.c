@@ -109,11 +109,15 @@ static const rt_ray_record *root(void)
     return &pt.log.rays[pt.first_root];
 }
 
-static void expect_vec(rt_vec3 got, double x, double y, double z, double tol, const char *what)
+static void expect_vec(rt_vec3 v, double x, double y, double z, double tol, const char *what)
 {
-    cr_expect(fabs(got.x - x) <= tol && fabs(got.y - y) <= tol && fabs(got.z - z) <= tol,
-              "%s: got (%.17g, %.17g, %.17g), expected (%.17g, %.17g, %.17g)", what, got.x, got.y, got.z, x, y, z);
+    double gx = rt_to_double(v.x), gy = rt_to_double(v.y), gz = rt_to_double(v.z);
+    cr_expect(fabs(gx - x) <= tol && fabs(gy - y) <= tol && fabs(gz - z) <= tol,
+              "%s: got (%.17g, %.17g, %.17g), expected (%.17g, %.17g, %.17g)", what, gx, gy, gz, x, y, z);
 }
+
+/* v as doubles, for expect_vec. */
+#define XYZ(v) rt_to_double((v).x), rt_to_double((v).y), rt_to_double((v).z)
 
 /* ---- Known hits ---- */
 
@@ -137,9 +141,10 @@ Test(debug, cylinder_at_the_image_centre)
     expect_vec(r->normal_used, ax, ay, az, 1e-9, "normal used");
     cr_expect(r->entering);
     /* The top cap's centre is the origin (Translation Y -0.5 under a height of 1), radius 1. */
-    rt_vec3 p = r->surface.point;
-    cr_expect(fabs(p.x * ax + p.y * ay + p.z * az) < 1e-9, "point off the cap plane");
-    cr_expect(p.x * p.x + p.y * p.y + p.z * p.z <= 1.0);
+    double px = rt_to_double(r->surface.point.x), py = rt_to_double(r->surface.point.y),
+           pz = rt_to_double(r->surface.point.z);
+    cr_expect(fabs(px * ax + py * ay + pz * az) < 1e-9, "point off the cap plane");
+    cr_expect(px * px + py * py + pz * pz <= 1.0);
     expect_vec(r->ray.origin, 5, 0, 0, 0, "eye");
 }
 
@@ -157,7 +162,7 @@ Test(debug, floor_box_near_the_bottom)
     /* The Cube scaled (15, 1, 15) at y = -2: its top face is y = -1.5, normal +Y. */
     expect_vec(r->surface.geometric_normal, 0, 1, 0, 1e-12, "geometric normal");
     expect_vec(r->normal_used, 0, 1, 0, 1e-12, "normal used");
-    cr_expect_float_eq(r->surface.point.y, -1.5, 1e-12);
+    cr_expect_float_eq(rt_to_double(r->surface.point.y), -1.5, 1e-12);
     /* Lit: the light's shadow ray reaches it unblocked. */
     cr_assert_neq(pt.first_light[pt.first_root], RT_NO_PARENT);
     const rt_light_record *l = &pt.log.lights[pt.first_light[pt.first_root]];
@@ -183,7 +188,7 @@ Test(debug, floor_in_the_cylinders_shadow)
     rt_hit_names n = rt_pixel_trace_names(&pt, s);
     cr_expect_str_eq(n.node, "Cylinder");
     cr_expect_str_eq(n.part, "bottom cap");
-    cr_expect_float_eq(s->surface.point.y, 1.0, 1e-9, "the cylinder's bottom is at y = 1");
+    cr_expect_float_eq(rt_to_double(s->surface.point.y), 1.0, 1e-9, "the cylinder's bottom is at y = 1");
     expect_vec(s->color, 0, 0, 0, 0, "shadow ray attenuation");
     cr_expect_arr_eq(pt.rgb, ((uint8_t[]){0, 0, 0}), 3);
 }
@@ -196,7 +201,7 @@ Test(debug, refraction_through_the_lens)
     cr_assert(r->hit);
     cr_expect_str_eq(rt_pixel_trace_names(&pt, r).node, "Sphere 1");
     cr_expect_str_eq(rt_pixel_trace_names(&pt, r).material, "Lens");
-    cr_expect(rt_pixel_trace_material(&pt, r).kt.x > 0);
+    cr_expect(rt_pixel_trace_material(&pt, r).kt.x > RT_ZERO);
     uint32_t c = pt.first_child[pt.first_root];
     while (c != RT_NO_PARENT && pt.log.rays[c].kind != RT_RAY_REFRACTION) c = pt.next_sibling[c];
     cr_assert_neq(c, RT_NO_PARENT, "no refraction ray");
@@ -207,8 +212,7 @@ Test(debug, refraction_through_the_lens)
     /* Inside the glass the ray leaves through the far side: the normal is flipped. */
     cr_expect_str_eq(rt_pixel_trace_names(&pt, inside).node, "Sphere 1");
     cr_expect_not(inside->entering);
-    expect_vec(inside->normal_used, -inside->surface.normal.x, -inside->surface.normal.y, -inside->surface.normal.z,
-               0, "flipped normal");
+    expect_vec(inside->normal_used, XYZ(rt_v3_neg(inside->surface.normal)), 0, "flipped normal");
 }
 
 /* ---- The colour is the render's ---- */
@@ -254,12 +258,14 @@ Test(debug, every_pixel_of_an_anti_aliased_scene)
             trace(x, y, RT_PIXEL_ALL_SAMPLES);
             cr_expect_arr_eq(pt.rgb, img.rgb + 3 * (y * img.width + x), 3, "pixel (%u, %u)", x, y);
             /* Four camera rays whose colours average, in order, to the pixel's. */
-            rt_vec3 sum = {0, 0, 0};
+            rt_vec3 sum = rt_v3(RT_ZERO, RT_ZERO, RT_ZERO);
             uint32_t n = 0;
             for (uint32_t id = pt.first_root; id != RT_NO_PARENT; id = pt.next_sibling[id], n++)
                 sum = rt_v3_add(sum, pt.log.rays[id].color);
             cr_expect_eq(n, 4u);
-            expect_vec(pt.color, sum.x / 4, sum.y / 4, sum.z / 4, 0, "average of the samples");
+            rt_real four = rt_from_int(4);
+            rt_vec3 mean = rt_v3(rt_div(sum.x, four), rt_div(sum.y, four), rt_div(sum.z, four));
+            expect_vec(pt.color, XYZ(mean), 0, "average of the samples");
         }
     rt_image_free(&img);
 }
@@ -275,9 +281,9 @@ Test(debug, one_sample_is_that_samples_camera_ray)
     trace(6, 4, 2);
     cr_assert_eq(pt.next_sibling[pt.first_root], RT_NO_PARENT, "one camera ray");
     const rt_ray_record *r = root();
-    expect_vec(r->ray.direction, third.ray.direction.x, third.ray.direction.y, third.ray.direction.z, 0, "direction");
-    expect_vec(r->color, third.color.x, third.color.y, third.color.z, 0, "colour");
-    expect_vec(pt.color, all.x, all.y, all.z, 0, "the pixel's colour is still the average");
+    expect_vec(r->ray.direction, XYZ(third.ray.direction), 0, "direction");
+    expect_vec(r->color, XYZ(third.color), 0, "colour");
+    expect_vec(pt.color, XYZ(all), 0, "the pixel's colour is still the average");
 }
 
 /* Every hit's colour is its emission, plus each light's contribution, plus k_s times the
@@ -296,7 +302,7 @@ static void expect_terms_add_up(void)
             rt_vec3 light = rt_v3_scale(rt_v3_mul(l->shadow_attenuation, scene->lights[l->light].color),
                                         l->distance_attenuation);
             rt_vec3 want = rt_v3_add(l->ambient, rt_v3_mul(light, rt_v3_add(l->diffuse, l->specular)));
-            expect_vec(l->contribution, want.x, want.y, want.z, 1e-12, "light contribution");
+            expect_vec(l->contribution, XYZ(want), 1e-12, "light contribution");
             sum = rt_v3_add(sum, l->contribution);
         }
         for (uint32_t c = pt.first_child[i]; c != RT_NO_PARENT; c = pt.next_sibling[c]) {
@@ -304,7 +310,7 @@ static void expect_terms_add_up(void)
             rt_vec3 weight = child->kind == RT_RAY_REFLECTION ? m.ks : m.kt;
             sum = rt_v3_add(sum, rt_v3_mul(weight, child->color));
         }
-        expect_vec(r->color, sum.x, sum.y, sum.z, 1e-12, "a ray's colour from its terms");
+        expect_vec(r->color, XYZ(sum), 1e-12, "a ray's colour from its terms");
     }
 }
 
@@ -331,7 +337,7 @@ Test(debug, a_full_log_cuts_the_tree_not_the_colour)
     cr_assert(rt_pixel_trace_run(&pt, &built, 200, 250, RT_PIXEL_ALL_SAMPLES, 3));
     cr_expect(pt.log.overflow);
     cr_expect_eq(pt.log.ray_count, 3u);
-    expect_vec(pt.color, full.x, full.y, full.z, 0, "colour");
+    expect_vec(pt.color, XYZ(full), 0, "colour");
 }
 
 /* ---- The command ---- */

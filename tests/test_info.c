@@ -154,10 +154,11 @@ Test(info, sah_cost_of_a_hand_made_tree)
 {
     /* Root [0,1]^3 (area 6) over two halves [0,0.5]x[0,1]^2 (area 4 each) holding 1 and 2
      * primitives: 1 traversal + 4/6 * 1 test + 4/6 * 2 tests = 3. */
+    rt_real o = RT_ZERO, h = RT_C(0.5), l = RT_ONE;
     rt_bvh_node nodes[3] = {
-        {{{0, 0, 0}, {1, 1, 1}}, 1, 0},
-        {{{0, 0, 0}, {0.5, 1, 1}}, 0, 1},
-        {{{0.5, 0, 0}, {1, 1, 1}}, 1, 2},
+        {{{o, o, o}, {l, l, l}}, 1, 0},
+        {{{o, o, o}, {h, l, l}}, 0, 1},
+        {{{h, o, o}, {l, l, l}}, 1, 2},
     };
     rt_bvh bvh = {nodes, 3, NULL, 2};
     cr_expect_float_eq(rt_bvh_sah_cost(&bvh, 3), 3.0, 1e-12);
