@@ -47,7 +47,7 @@ done
 bench_scenes=(scenes/bench/dense_mesh.yaml scenes/bench/spheres.yaml scenes/bench/deep.yaml)
 kernels=(double)
 [ "$FIXED" = 1 ] && kernels+=(fixed)
-steps=$((2 + ${#kernels[@]} + ${#kernels[@]} * (${#corpus[@]} + ${#bench_scenes[@]})))
+steps=$((2 + ${#kernels[@]} + ${#kernels[@]} * (${#corpus[@]} + ${#bench_scenes[@]} + 1)))
 step=0
 progress() { step=$((step + 1)); note "[$step/$steps] $*"; }
 
@@ -72,7 +72,10 @@ D=$OUT/rtk-double.txt F=$OUT/rtk-fixed.txt E=$OUT/embree.txt
 : >"$ROWS"
 # row METRIC UNIT DOUBLE FIXED EMBREE (empty = not measured)
 row() { printf '%s\t%s\t%s\t%s\t%s\n' "$1" "$2" "$3" "$4" "$5" >>"$ROWS"; }
-speedup() { [ -n "$1" ] && [ -n "$2" ] && awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a / b }' || true; }
+# Field `col` of the row named `metric` written so far.
+val_row() { awk -F '\t' -v m="$1" -v c="$2" '$1 == m { print $c; exit }' "$ROWS"; }
+# a / b to two decimals, or "" unless both are positive numbers.
+speedup() { awk -v a="$1" -v b="$2" 'BEGIN { if (a ~ /^[0-9.]+$/ && b ~ /^[0-9.]+$/ && b > 0) printf "%.2f", a / b }'; }
 row "BVH build vs Embree 1 thread" s "$(val $D build_s)" "$(val $F build_s)" "$(val $E build_s)"
 row "BVH build vs Embree all threads" s "$(val $D build_s)" "$(val $F build_s)" "$(val $E build_all_s)"
 for q in primary shadow; do
@@ -86,24 +89,38 @@ done
 row "BVH + mesh memory (allocated)" B/tri "$(val $D bytes_per_tri)" "$(val $F bytes_per_tri)" "$(val $E bytes_per_tri)"
 row "BVH + mesh memory (nodes used)" B/tri "$(val $D bytes_per_tri_used)" "$(val $F bytes_per_tri_used)" ""
 
-# Wall time of `rtk render --quiet` (load, build, render on all threads, write a PPM).
+# Sets t to the wall time of `rtk render --quiet` (load, build, render, write a PPM) for
+# one kernel, or "failed", or "" when that kernel is not built. Extra arguments go to
+# rtk render.
+render_time() {
+    local k=$1 scene=$2 dir=build start
+    shift 2
+    t=""
+    [ "$k" = fixed ] && dir=build-fixed
+    if [ "$k" = fixed ] && [ "$FIXED" != 1 ]; then return; fi
+    progress "render ${scene#"$ASSETS"/assets/trace/} ($k${1:+ $*})"
+    start=$(date +%s.%N)
+    if "$dir/rtk" render --quiet "$scene" --assets "$ASSETS" -o "$OUT/render.ppm" "$@" 2>"$OUT/render.err"; then
+        t=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.3f", b - a }')
+    else
+        note "  failed: $(head -n1 "$OUT/render.err")"
+        t=failed
+    fi
+}
 for scene in "${corpus[@]}" "${bench_scenes[@]}"; do
-    name=${scene#"$ASSETS"/assets/trace/}
-    times=()
-    for k in double fixed; do
-        dir=build; [ "$k" = fixed ] && dir=build-fixed
-        if [ "$k" = fixed ] && [ "$FIXED" != 1 ]; then times+=(""); continue; fi
-        progress "render $name ($k)"
-        start=$(date +%s.%N)
-        if "$dir/rtk" render --quiet "$scene" --assets "$ASSETS" -o "$OUT/render.ppm" 2>"$OUT/render.err"; then
-            times+=("$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.3f", b - a }')")
-        else
-            note "  failed: $(head -n1 "$OUT/render.err")"
-            times+=("failed")
-        fi
-    done
-    row "render $name" s "${times[0]}" "${times[1]}" ""
+    render_time double "$scene"
+    dt=$t
+    render_time fixed "$scene"
+    row "render ${scene#"$ASSETS"/assets/trace/}" s "$dt" "$t" ""
 done
+# Thread scaling of a whole render: the deep scene spends nearly all its time tracing.
+deep=scenes/bench/deep.yaml
+render_time double $deep --threads 1
+d1=$t
+render_time fixed $deep --threads 1
+row "render $deep, 1 thread" s "$d1" "$t" ""
+row "render $deep speed-up $cpus/1 threads" x "$(speedup "$d1" "$(val_row "render $deep" 3)")" \
+    "$(speedup "$t" "$(val_row "render $deep" 4)")" ""
 rm -f "$OUT/render.ppm" "$OUT/render.err"
 
 machine=$(lscpu | sed -n 's/^Model name: *//p' | head -n1)
