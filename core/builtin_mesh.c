@@ -2,18 +2,18 @@
 #include "scene.h"
 
 #define H RT_C(0.5)
-#define L RT_C(-0.5)
+#define N RT_C(-0.5)
 #define O RT_ZERO
 #define I RT_ONE
 
 /* Faces in the order back, front, left, right, bottom, top; four corners each. */
 static const rt_vec3 cube_positions[24] = {
-    {L, L, L}, {L, H, L}, {H, L, L}, {H, H, L}, /* back, (x, y) at z = -0.5 */
-    {L, L, H}, {L, H, H}, {H, L, H}, {H, H, H}, /* front, (x, y) at z = +0.5 */
-    {L, L, L}, {L, L, H}, {L, H, L}, {L, H, H}, /* left, (y, z) at x = -0.5 */
-    {H, L, L}, {H, L, H}, {H, H, L}, {H, H, H}, /* right, (y, z) at x = +0.5 */
-    {L, L, H}, {L, L, L}, {H, L, H}, {H, L, L}, /* bottom, (x, z) at y = -0.5 */
-    {L, H, H}, {L, H, L}, {H, H, H}, {H, H, L}, /* top, (x, z) at y = +0.5 */
+    {N, N, N}, {N, H, N}, {H, N, N}, {H, H, N}, /* back, (x, y) at z = -0.5 */
+    {N, N, H}, {N, H, H}, {H, N, H}, {H, H, H}, /* front, (x, y) at z = +0.5 */
+    {N, N, N}, {N, N, H}, {N, H, N}, {N, H, H}, /* left, (y, z) at x = -0.5 */
+    {H, N, N}, {H, N, H}, {H, H, N}, {H, H, H}, /* right, (y, z) at x = +0.5 */
+    {N, N, H}, {N, N, N}, {H, N, H}, {H, N, N}, /* bottom, (x, z) at y = -0.5 */
+    {N, H, H}, {N, H, N}, {H, H, H}, {H, H, N}, /* top, (x, z) at y = +0.5 */
 };
 
 static const rt_vec3 cube_normals[24] = {
@@ -38,7 +38,7 @@ static const uint32_t cube_indices[36] = {
     13, 12, 14, 13, 14, 15, 16, 17, 18, 18, 17, 19, 21, 20, 22, 21, 22, 23,
 };
 
-static const rt_vec3 square_positions[4] = {{L, L, O}, {H, L, O}, {H, H, O}, {L, H, O}};
+static const rt_vec3 square_positions[4] = {{N, N, O}, {H, N, O}, {H, H, O}, {N, H, O}};
 static const rt_vec3 square_normals[4] = {{O, O, I}, {O, O, I}, {O, O, I}, {O, O, I}};
 static const rt_vec2 square_uvs[4] = {{O, O}, {I, O}, {I, I}, {O, I}};
 static const uint32_t square_indices[6] = {0, 1, 2, 0, 2, 3};
