@@ -75,7 +75,7 @@ bool rt_pixel_trace_run(rt_pixel_trace *pt, const rt_built_scene *built, uint32_
     if (sample == RT_PIXEL_ALL_SAMPLES) {
         pt->color = rt_render_pixel(&logged, x, y);
     } else {
-        rt_trace(&logged, rt_pixel_ray(&scene->camera, x, y, sample), 0);
+        rt_render_sample(&logged, x, y, sample);
         rt_tracer plain = {scene, true, NULL};
         pt->color = rt_render_pixel(&plain, x, y);
     }
