@@ -33,7 +33,9 @@ static bool nearest_root(rt_real a, rt_real b, rt_real c, rt_real t_min, rt_real
 {
     if (a == RT_ZERO) return false;
     rt_real disc = rt_sub(rt_mul(b, b), rt_mul(rt_mul(RT_C(4.0), a), c));
-    if (disc < RT_ZERO) return false;
+    /* NaN (b*b and 4ac both overflowing) must miss too: rt_sqrt would turn it into 0
+     * and report the point of closest approach as a hit. */
+    if (!(disc >= RT_ZERO)) return false;
     rt_real root = rt_sqrt(disc);
     rt_real q = rt_mul(RT_C(-0.5), b < RT_ZERO ? rt_sub(b, root) : rt_add(b, root));
     if (q == RT_ZERO) return false;
