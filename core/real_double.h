@@ -42,6 +42,20 @@ static inline uint8_t rt_unit_to_byte(rt_real c)
     return (uint8_t)f;
 }
 
+/* The value's 64 bits, for blobs (core/blob.c); exact in both directions. */
+static inline uint64_t rt_real_to_bits(rt_real a)
+{
+    union { double d; uint64_t u; } c;
+    c.d = a;
+    return c.u;
+}
+static inline rt_real rt_real_from_bits(uint64_t bits)
+{
+    union { double d; uint64_t u; } c;
+    c.u = bits;
+    return c.d;
+}
+
 /* Host-side conversion for loaders and tests; never called by the core. */
 static inline rt_real rt_from_double(double d) { return d; }
 static inline double rt_to_double(rt_real a) { return a; }

@@ -4,6 +4,7 @@
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include "exit_codes.h"
 
 bool rt_parse_u32(const char *s, uint32_t lo, uint32_t hi, uint32_t *out)
@@ -37,4 +38,39 @@ int rt_usage_error(const char *cmd, const char *msg, const char *arg)
     if (arg) fprintf(stderr, "rtk %s: %s '%s' (see rtk %s --help)\n", cmd, msg, arg, cmd);
     else fprintf(stderr, "rtk %s: %s (see rtk %s --help)\n", cmd, msg, cmd);
     return RT_EXIT_USAGE;
+}
+
+rt_build_options rt_default_build_options(void)
+{
+    rt_build_options o = {0};
+    o.max_memory = (size_t)4 << 30;
+    o.depth = -1;
+    o.aa = -1;
+    return o;
+}
+
+int rt_parse_scene_option(const char *cmd, int argc, char **argv, int *i, rt_build_options *opt)
+{
+    const char *arg = argv[*i];
+    const char *val = *i + 1 < argc ? argv[*i + 1] : NULL;
+    uint32_t n;
+    if (!strcmp(arg, "--width") || !strcmp(arg, "--height")) {
+        if (!rt_parse_u32(val, 1, 16384, &n)) return -rt_usage_error(cmd, "expected 1..16384 after", arg);
+        *(arg[2] == 'w' ? &opt->width : &opt->height) = n;
+    } else if (!strcmp(arg, "--depth")) {
+        if (!rt_parse_u32(val, 0, 64, &n)) return -rt_usage_error(cmd, "expected 0..64 after", arg);
+        opt->depth = (int32_t)n;
+    } else if (!strcmp(arg, "--aa")) {
+        if (!rt_parse_u32(val, 0, 7, &n)) return -rt_usage_error(cmd, "expected 0..7 after", arg);
+        opt->aa = (int32_t)n;
+    } else if (!strcmp(arg, "--assets")) {
+        if (!val) return -rt_usage_error(cmd, "missing folder after", arg);
+        opt->assets_root = val;
+    } else if (!strcmp(arg, "--max-memory")) {
+        if (!rt_parse_bytes(val, &opt->max_memory)) return -rt_usage_error(cmd, "expected a size such as 512M after", arg);
+    } else {
+        return 0;
+    }
+    (*i)++;
+    return 1;
 }

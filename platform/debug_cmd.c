@@ -28,12 +28,7 @@ static const char usage[] =
     "  --json              print the ray tree as one JSON document instead of text\n"
     "  --svg FILE          also draw it: the image with the pixel marked, and the rays\n"
     "                      projected on the Z-Y (side) and X-Z (top) planes\n"
-    "  --width N           override the camera's Render Width (px), 1..16384\n"
-    "  --height N          override the camera's Render Height (px), 1..16384\n"
-    "  --depth N           override Maximum Recursion Depth, 0..64\n"
-    "  --aa N              override Samples Per Pixel: 4^N samples per pixel, N 0..7\n"
-    "  --assets DIR        the folder that contains assets/ (default: found from the scene's path)\n"
-    "  --max-memory SIZE   cap on scene memory, e.g. 512M or 4G (default 4G)\n"
+    RT_SCENE_OPTIONS_HELP
     "\n"
     "Exit codes: 0 ok, 2 bad arguments (including a pixel outside the image), 3 bad or\n"
     "missing input file, 4 SVG not writable, 5 over the memory cap.\n";
@@ -59,14 +54,15 @@ static bool parse_pixel(const char *s, uint32_t width, uint32_t height, uint32_t
 static int parse_args(int argc, char **argv, debug_args *a)
 {
     memset(a, 0, sizeof *a);
-    a->build.max_memory = (size_t)4 << 30;
-    a->build.depth = -1;
-    a->build.aa = -1;
+    a->build = rt_default_build_options();
     a->sample = RT_PIXEL_ALL_SAMPLES;
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i];
         const char *val = i + 1 < argc ? argv[i + 1] : NULL;
         uint32_t n;
+        int scene_option = rt_parse_scene_option("debug", argc, argv, &i, &a->build);
+        if (scene_option < 0) return -scene_option;
+        if (scene_option > 0) continue;
         if (!strcmp(arg, "--help") || !strcmp(arg, "-h")) {
             fputs(usage, stdout);
             exit(RT_EXIT_OK);
@@ -80,22 +76,6 @@ static int parse_args(int argc, char **argv, debug_args *a)
         } else if (!strcmp(arg, "--svg")) {
             if (!val) return rt_usage_error("debug", "missing file after", arg);
             a->svg = val, i++;
-        } else if (!strcmp(arg, "--width") || !strcmp(arg, "--height")) {
-            if (!rt_parse_u32(val, 1, 16384, &n)) return rt_usage_error("debug", "expected 1..16384 after", arg);
-            *(arg[2] == 'w' ? &a->build.width : &a->build.height) = n, i++;
-        } else if (!strcmp(arg, "--depth")) {
-            if (!rt_parse_u32(val, 0, 64, &n)) return rt_usage_error("debug", "expected 0..64 after", arg);
-            a->build.depth = (int32_t)n, i++;
-        } else if (!strcmp(arg, "--aa")) {
-            if (!rt_parse_u32(val, 0, 7, &n)) return rt_usage_error("debug", "expected 0..7 after", arg);
-            a->build.aa = (int32_t)n, i++;
-        } else if (!strcmp(arg, "--assets")) {
-            if (!val) return rt_usage_error("debug", "missing folder after", arg);
-            a->build.assets_root = val, i++;
-        } else if (!strcmp(arg, "--max-memory")) {
-            if (!rt_parse_bytes(val, &a->build.max_memory))
-                return rt_usage_error("debug", "expected a size such as 512M after", arg);
-            i++;
         } else if (!strcmp(arg, "--json")) {
             a->json = true;
         } else if (arg[0] == '-' && arg[1]) {

@@ -19,8 +19,7 @@ static const char usage[] =
     "depth and SAH cost, and the scene memory (arena) used.\n"
     "\n"
     "  --json              one JSON document instead of text\n"
-    "  --assets DIR        the folder that contains assets/ (default: found from the scene's path)\n"
-    "  --max-memory SIZE   cap on scene memory, e.g. 512M or 4G (default 4G)\n"
+    RT_SCENE_OPTIONS_HELP
     "\n"
     "Exit codes: 0 ok, 2 bad arguments, 3 bad or missing input file, 5 over the memory cap.\n";
 
@@ -36,24 +35,17 @@ typedef struct {
 static int parse_args(int argc, char **argv, info_args *a)
 {
     memset(a, 0, sizeof *a);
-    a->build.max_memory = (size_t)4 << 30;
-    a->build.depth = -1;
-    a->build.aa = -1;
+    a->build = rt_default_build_options();
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i];
-        const char *val = i + 1 < argc ? argv[i + 1] : NULL;
+        int scene_option = rt_parse_scene_option("info", argc, argv, &i, &a->build);
+        if (scene_option < 0) return -scene_option;
+        if (scene_option > 0) continue;
         if (!strcmp(arg, "--help") || !strcmp(arg, "-h")) {
             fputs(usage, stdout);
             exit(RT_EXIT_OK);
         } else if (!strcmp(arg, "--json")) {
             a->json = true;
-        } else if (!strcmp(arg, "--assets")) {
-            if (!val) return rt_usage_error("info", "missing folder after", arg);
-            a->build.assets_root = val, i++;
-        } else if (!strcmp(arg, "--max-memory")) {
-            if (!rt_parse_bytes(val, &a->build.max_memory))
-                return rt_usage_error("info", "expected a size such as 512M after", arg);
-            i++;
         } else if (arg[0] == '-' && arg[1]) {
             return rt_usage_error("info", "unknown option", arg);
         } else if (!a->scene) {

@@ -5,6 +5,7 @@
 #include "debug_cmd.h"
 #include "exit_codes.h"
 #include "info_cmd.h"
+#include "pack_cmd.h"
 #include "render_cmd.h"
 
 static const char usage[] =
@@ -18,6 +19,7 @@ static const char usage[] =
     "  compare A B                    compare two images (rtk compare --help)\n"
     "  debug SCENE.yaml --pixel X,Y   every ray behind one pixel (rtk debug --help)\n"
     "  info SCENE.yaml                what a scene holds and costs (rtk info --help)\n"
+    "  pack SCENE.yaml -o OUT         the scene as one blob for bare-metal and cross builds\n"
     "\n"
     "Exit codes: 0 ok, 1 compare threshold not met, 2 bad arguments, 3 bad or missing\n"
     "input file, 4 output not writable, 5 over the memory cap, 6 interrupted.\n";
@@ -37,6 +39,7 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "compare")) return rt_cmd_compare(argc - 1, argv + 1);
     if (!strcmp(cmd, "debug")) return rt_cmd_debug(argc - 1, argv + 1);
     if (!strcmp(cmd, "info")) return rt_cmd_info(argc - 1, argv + 1);
+    if (!strcmp(cmd, "pack")) return rt_cmd_pack(argc - 1, argv + 1);
     fprintf(stderr, "rtk: unknown command '%s' (see rtk --help)\n", cmd);
     return RT_EXIT_USAGE;
 }

@@ -28,16 +28,11 @@ static const char usage[] =
     "binary PPM); the file is written atomically, or not at all on error.\n"
     "\n"
     "  -o, --output FILE   image to write (optional with --hash)\n"
-    "  --width N           override the camera's Render Width (px), 1..16384\n"
-    "  --height N          override the camera's Render Height (px), 1..16384\n"
-    "  --depth N           override Maximum Recursion Depth, 0..64\n"
-    "  --aa N              override Samples Per Pixel: 4^N samples per pixel, N 0..7\n"
+    RT_SCENE_OPTIONS_HELP
     "  --threads N         worker threads (default: all cores); the image does not depend on it\n"
     "  --tile N            tile side in pixels (default 32); the image does not depend on it\n"
     "  --hash              print the render hash (SHA-256 of the P6 PPM bytes) on stdout\n"
-    "  --assets DIR        the folder that contains assets/ (default: found from the scene's path)\n"
     "  --no-bvh            test every primitive for every ray (slow; the image is identical)\n"
-    "  --max-memory SIZE   cap on scene memory, e.g. 512M or 4G (default 4G)\n"
     "  --quiet             no progress bar\n"
     "  --progress          progress bar even when stderr is not a terminal\n"
     "\n"
@@ -54,42 +49,27 @@ typedef struct {
 static int parse_args(int argc, char **argv, render_args *a)
 {
     memset(a, 0, sizeof *a);
-    a->build.max_memory = (size_t)4 << 30;
-    a->build.depth = -1;
-    a->build.aa = -1;
+    a->build = rt_default_build_options();
     a->use_bvh = true;
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i];
         const char *val = i + 1 < argc ? argv[i + 1] : NULL;
         uint32_t n;
+        int scene_option = rt_parse_scene_option("render", argc, argv, &i, &a->build);
+        if (scene_option < 0) return -scene_option;
+        if (scene_option > 0) continue;
         if (!strcmp(arg, "--help") || !strcmp(arg, "-h")) {
             fputs(usage, stdout);
             exit(RT_EXIT_OK);
         } else if (!strcmp(arg, "-o") || !strcmp(arg, "--output")) {
             if (!val) return rt_usage_error("render", "missing file after", arg);
             a->output = val, i++;
-        } else if (!strcmp(arg, "--width") || !strcmp(arg, "--height")) {
-            if (!rt_parse_u32(val, 1, 16384, &n)) return rt_usage_error("render", "expected 1..16384 after", arg);
-            *(arg[2] == 'w' ? &a->build.width : &a->build.height) = n, i++;
-        } else if (!strcmp(arg, "--depth")) {
-            if (!rt_parse_u32(val, 0, 64, &n)) return rt_usage_error("render", "expected 0..64 after", arg);
-            a->build.depth = (int32_t)n, i++;
-        } else if (!strcmp(arg, "--aa")) {
-            if (!rt_parse_u32(val, 0, 7, &n)) return rt_usage_error("render", "expected 0..7 after", arg);
-            a->build.aa = (int32_t)n, i++;
         } else if (!strcmp(arg, "--threads")) {
             if (!rt_parse_u32(val, 1, 1024, &n)) return rt_usage_error("render", "expected 1..1024 after", arg);
             a->parallel.threads = n, i++;
         } else if (!strcmp(arg, "--tile")) {
             if (!rt_parse_u32(val, 1, 4096, &n)) return rt_usage_error("render", "expected 1..4096 after", arg);
             a->parallel.tile_size = n, i++;
-        } else if (!strcmp(arg, "--assets")) {
-            if (!val) return rt_usage_error("render", "missing folder after", arg);
-            a->build.assets_root = val, i++;
-        } else if (!strcmp(arg, "--max-memory")) {
-            if (!rt_parse_bytes(val, &a->build.max_memory))
-                return rt_usage_error("render", "expected a size such as 512M after", arg);
-            i++;
         } else if (!strcmp(arg, "--hash")) {
             a->hash = true;
         } else if (!strcmp(arg, "--no-bvh")) {
