@@ -103,12 +103,15 @@ static inline int32_t rt_floor_int(rt_real a)
 /* True when a is strictly inside the saturation rails (a saturated result means overflow). */
 static inline bool rt_is_finite(rt_real a) { return a > -RT_REAL_MAX && a < RT_REAL_MAX; }
 
-/* floor(255 * c) for c in [0, 1] (exact), clamped to 0..255 outside. */
+/* floor(255 * c + 2^-20) for c in [0, 1], clamped to 0..255 outside. The solution
+ * computes (uint8)(255.0f * (float)c), whose float roundings lift a value a few lsb
+ * below k/255 (such as 127/255 in Q32.32) to k; the 2^-20 nudge does the same. */
 static inline uint8_t rt_unit_to_byte(rt_real c)
 {
     if (c <= RT_ZERO) return 0;
     if (c >= RT_ONE) return 255;
-    return (uint8_t)((uint64_t)c * 255u >> 32);
+    uint64_t scaled = (uint64_t)c * 255u + (UINT64_C(1) << 12);
+    return scaled >> 32 >= 255u ? 255 : (uint8_t)(scaled >> 32);
 }
 
 /* The value's 64 bits (two's complement), for blobs (core/blob.c); exact both ways. */

@@ -205,10 +205,15 @@ Test(real_fixed, floor_int_and_unit_to_byte)
     cr_assert_eq(rt_floor_int(-1), -1);
     cr_assert_eq(rt_floor_int(RT_REAL_MAX), INT32_MAX);
     cr_assert_eq(rt_floor_int(-RT_REAL_MAX), INT32_MIN);
+    /* floor(255 c + 2^-20): the step to k comes 2^-20 / 255 early, like the float rounding
+     * of the solution; a clear 2^-16 below k/255 still gives k - 1. */
     for (int64_t k = 1; k <= 255; k++) {
-        rt_real first = (rt_real)((k << 32) + 254) / 255; /* smallest raw c with floor(255 c) = k */
+        rt_real exact = (rt_real)((k << 32) + 254) / 255; /* smallest raw c with floor(255 c) = k */
+        rt_real first = (rt_real)((k << 32) - (INT64_C(1) << 12) + 254) / 255;
+        cr_assert_eq(rt_unit_to_byte(exact), k);
         cr_assert_eq(rt_unit_to_byte(first), k);
         cr_assert_eq(rt_unit_to_byte(first - 1), k - 1);
+        cr_assert_eq(rt_unit_to_byte(exact - (INT64_C(1) << 16)), k - 1);
     }
     cr_assert_eq(rt_unit_to_byte(RT_ONE), 255);
     cr_assert_eq(rt_unit_to_byte(RT_C(7.0)), 255);
