@@ -63,6 +63,11 @@ int rt_parse_scene_option(const char *cmd, int argc, char **argv, int *i, rt_bui
     } else if (!strcmp(arg, "--aa")) {
         if (!rt_parse_u32(val, 0, 7, &n)) return -rt_usage_error(cmd, "expected 0..7 after", arg);
         opt->aa = (int32_t)n;
+    } else if (!strcmp(arg, "--spp")) {
+        /* The format counts samples as 4^index: a power of 4, 1..16384 (§5.1.1). */
+        if (!rt_parse_u32(val, 1, 16384, &n) || (n & (n - 1)) || !(n & 0x55555555u))
+            return -rt_usage_error(cmd, "expected a power of 4 (1, 4, 16, ..., 16384) after", arg);
+        opt->aa = __builtin_ctz(n) / 2;
     } else if (!strcmp(arg, "--assets")) {
         if (!val) return -rt_usage_error(cmd, "missing folder after", arg);
         opt->assets_root = val;

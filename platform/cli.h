@@ -18,7 +18,7 @@ int rt_usage_error(const char *cmd, const char *msg, const char *arg);
 rt_build_options rt_default_build_options(void);
 
 /* The scene options every scene-reading subcommand shares (--width --height --depth
- * --aa --assets --max-memory), at argv[*i]. Returns 1 when it consumed the option (and
+ * --aa --spp --assets --max-memory), at argv[*i]. Returns 1 when it consumed the option (and
  * its value; *i is advanced past it), 0 when argv[*i] is not one of them, or
  * RT_EXIT_USAGE's negation after printing a usage error. */
 int rt_parse_scene_option(const char *cmd, int argc, char **argv, int *i, rt_build_options *opt);
@@ -28,6 +28,7 @@ int rt_parse_scene_option(const char *cmd, int argc, char **argv, int *i, rt_bui
     "  --height N          override the camera's Render Height (px), 1..16384\n" \
     "  --depth N           override Maximum Recursion Depth, 0..64\n" \
     "  --aa N              override Samples Per Pixel: 4^N samples per pixel, N 0..7\n" \
+    "  --spp N             the same as N samples per pixel, N a power of 4 (1, 4, ..., 16384)\n" \
     "  --assets DIR        the folder that contains assets/ (default: found from the scene's path)\n" \
     "  --max-memory SIZE   cap on scene memory, e.g. 512M or 4G (default 4G)\n"
 
