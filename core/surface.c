@@ -58,16 +58,18 @@ rt_surface rt_surface_at(const rt_scene *scene, const rt_ray *ray, const rt_scen
     return s;
 }
 
-/* Column or row index wrapped into [0, n) with a true modulo. */
-static uint32_t wrap(int64_t i, uint32_t n)
+/* Column or row index wrapped into [0, n) with a true modulo (n <= 65536, checked at build). */
+static uint32_t wrap(int32_t i, uint32_t n)
 {
-    int64_t m = i % (int64_t)n;
-    return (uint32_t)(m < 0 ? m + n : m);
+    int32_t m = i % (int32_t)n;
+    return (uint32_t)(m < 0 ? m + (int32_t)n : m);
 }
 
-static rt_vec3 texel(const rt_texture *tex, int64_t x, int64_t y)
+static uint32_t next(uint32_t i, uint32_t n) { return i + 1 == n ? 0 : i + 1; }
+
+static rt_vec3 texel(const rt_texture *tex, uint32_t x, uint32_t y)
 {
-    const uint8_t *p = tex->rgb + ((size_t)wrap(y, tex->height) * tex->width + wrap(x, tex->width)) * 3;
+    const uint8_t *p = tex->rgb + ((size_t)y * tex->width + x) * 3;
     rt_real full = rt_from_int(255);
     return rt_v3(rt_div(rt_from_int(p[0]), full), rt_div(rt_from_int(p[1]), full), rt_div(rt_from_int(p[2]), full));
 }
@@ -77,13 +79,15 @@ static rt_vec3 lerp(rt_vec3 a, rt_vec3 b, rt_real t) { return rt_v3_add(a, rt_v3
 rt_vec3 rt_texture_sample(const rt_texture *tex, rt_vec2 uv)
 {
     /* Texel (i, j) sits exactly at uv (i/W, j/H); v = 0 is the top row (format §6.3). */
-    rt_real px = rt_mul(uv.u, rt_from_int(tex->width)), py = rt_mul(uv.v, rt_from_int(tex->height));
+    uint32_t w = tex->width, h = tex->height;
+    rt_real px = rt_mul(uv.u, rt_from_int(w)), py = rt_mul(uv.v, rt_from_int(h));
     if (!tex->bilinear)
-        return texel(tex, rt_floor_int(rt_add(px, RT_C(0.5))), rt_floor_int(rt_add(py, RT_C(0.5))));
-    int64_t ix = rt_floor_int(px), iy = rt_floor_int(py);
+        return texel(tex, wrap(rt_floor_int(rt_add(px, RT_C(0.5))), w), wrap(rt_floor_int(rt_add(py, RT_C(0.5))), h));
+    int32_t ix = rt_floor_int(px), iy = rt_floor_int(py);
     rt_real fx = rt_sub(px, rt_from_int(ix)), fy = rt_sub(py, rt_from_int(iy));
-    rt_vec3 top = lerp(texel(tex, ix, iy), texel(tex, ix + 1, iy), fx);
-    rt_vec3 bottom = lerp(texel(tex, ix, iy + 1), texel(tex, ix + 1, iy + 1), fx);
+    uint32_t x0 = wrap(ix, w), y0 = wrap(iy, h), x1 = next(x0, w), y1 = next(y0, h);
+    rt_vec3 top = lerp(texel(tex, x0, y0), texel(tex, x1, y0), fx);
+    rt_vec3 bottom = lerp(texel(tex, x0, y1), texel(tex, x1, y1), fx);
     return lerp(top, bottom, fy);
 }
 
