@@ -1,0 +1,99 @@
+/* Scenes and rays for the intersector targets; see fixture.h. */
+#include "fixture.h"
+
+#include "check.h"
+#include "oracle.h"
+
+static uint8_t arena_memory[8u << 20];
+
+rt_status fz_build(const rt_scene_desc *desc, rt_scene *out, rt_build_error *err)
+{
+    rt_arena arena;
+    rt_arena_init(&arena, arena_memory, sizeof arena_memory);
+    return rt_scene_build(desc, &arena, out, err);
+}
+
+rt_camera_desc fz_camera(void)
+{
+    rt_camera_desc c = {0};
+    c.world = rt_affine_identity();
+    c.fov_degrees = RT_C(60.0);
+    c.perspective = true;
+    c.width = c.height = 4;
+    return c;
+}
+
+void fz_scene_one(rt_scene *out, rt_shape_kind kind, const rt_mesh_desc *mesh, rt_affine world)
+{
+    static const rt_material material = {
+        .diffuse = {.texture = RT_NO_TEXTURE}, .specular = {.texture = RT_NO_TEXTURE},
+        .emissive = {.texture = RT_NO_TEXTURE}, .transmittance = {.texture = RT_NO_TEXTURE},
+        .index_of_refraction = RT_C(1.0)};
+    rt_object_desc object = {.kind = kind, .world = world};
+    rt_scene_desc desc = {0};
+    desc.materials = &material;
+    desc.material_count = 1;
+    desc.meshes = mesh;
+    desc.mesh_count = mesh ? 1 : 0;
+    desc.objects = &object;
+    desc.object_count = 1;
+    desc.camera = fz_camera();
+    rt_build_error err;
+    rt_status st = fz_build(&desc, out, &err);
+    FZ_CHECK(st == RT_OK, "rt_scene_build refused a valid one-object scene: %s", err.what);
+}
+
+rt_affine fz_transform(fz_bytes *in)
+{
+    if (fz_u8(in) % 4 == 0) return rt_affine_identity();
+    rt_vec3 t = fz_vec_range(in, -8, 8), r = fz_vec_range(in, -180, 180);
+    double sx = fz_pow2(in, -4, 4), sy = fz_pow2(in, -4, 4), sz = fz_pow2(in, -4, 4);
+    return rt_affine_trs(t, r, rt_v3(rt_from_double(sx), rt_from_double(sy), rt_from_double(sz)));
+}
+
+void fz_ray_interval(fz_bytes *in, rt_ray *ray)
+{
+    uint8_t k = fz_u8(in);
+    ray->t_min = k % 8 == 0 ? RT_ZERO : RT_HIT_EPSILON;
+    ray->t_max = k / 8 % 8 == 0 ? rt_from_double(fz_pow2(in, -2, 7)) : RT_REAL_MAX;
+}
+
+rt_ray fz_ray_through(fz_bytes *in, rt_vec3 target)
+{
+    rt_vec3 away = fz_unit_vector(in);
+    rt_ray ray;
+    ray.origin = rt_v3_madd(target, away, rt_from_double(fz_pow2(in, -3, 7)));
+    ray.direction = rt_v3_normalize(rt_v3_sub(target, ray.origin));
+    if (rt_v3_is_zero(ray.direction)) ray.direction = rt_v3_neg(away);
+    fz_ray_interval(in, &ray);
+    return ray;
+}
+
+rt_ray fz_ray_axis(fz_bytes *in, rt_vec3 target)
+{
+    uint8_t k = fz_u8(in);
+    rt_real sign = k & 1 ? RT_ONE : rt_neg(RT_ONE);
+    rt_ray ray;
+    ray.direction = rt_v3(k / 2 % 3 == 0 ? sign : RT_ZERO, k / 2 % 3 == 1 ? sign : RT_ZERO, k / 2 % 3 == 2 ? sign : RT_ZERO);
+    ray.origin = rt_v3_madd(target, ray.direction, rt_neg(rt_from_int(1 << fz_below(in, 8))));
+    fz_ray_interval(in, &ray);
+    return ray;
+}
+
+rt_ray fz_ray_free(fz_bytes *in, double r)
+{
+    rt_ray ray;
+    ray.origin = fz_vec_range(in, -r, r);
+    ray.direction = fz_unit_vector(in);
+    fz_ray_interval(in, &ray);
+    return ray;
+}
+
+bool fz_grazing(const rt_scene *scene, uint32_t prim, const rt_ray *ray)
+{
+    if (prim >= scene->triangle_count) return false;
+    const rt_triangle *tri = &scene->triangles[prim];
+    const rt_vec3 *p = scene->positions;
+    fz_plane_crossing x;
+    return !fz_triangle_crossing(p[tri->v[0]], p[tri->v[1]], p[tri->v[2]], ray->origin, ray->direction, &x);
+}

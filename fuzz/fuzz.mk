@@ -1,0 +1,86 @@
+# libFuzzer targets and sanitizer runs; included by the top-level Makefile.
+#   make fuzz-build               every target, ASan+UBSan+libFuzzer, into build-fuzz/
+#   make fuzz FUZZ_SECONDS=N      runs each target N seconds from its seed corpus
+#   make check-asan               the Criterion suite and rtk under ASan+UBSan
+# Core targets are built for every scalar backend present (double, and fixed once
+# core/real_fixed.h exists); the parser targets (yaml, ply, png) for double only.
+
+FUZZ_CC ?= clang
+FUZZ_SECONDS ?= 20
+FUZZ_JOBS ?= 2
+FUZZ_BUILD := build-fuzz
+FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all
+FUZZ_PARSERS := fuzz_yaml fuzz_ply fuzz_png
+FUZZ_ALL := $(patsubst fuzz/%.c,%,$(wildcard fuzz/fuzz_*.c))
+FUZZ_CORE_TARGETS := $(filter-out $(FUZZ_PARSERS),$(FUZZ_ALL))
+FUZZ_HELPERS := $(filter-out fuzz/fuzz_%.c,$(wildcard fuzz/*.c))
+FUZZ_VARIANTS ?= double
+
+# The top-level flags without the backend switch; each variant adds its own.
+FUZZ_CORE_CFLAGS := $(filter-out -DRT_REAL_FIXED,$(CORE_CFLAGS)) $(FUZZ_SAN) -fsanitize=fuzzer-no-link
+FUZZ_PLATFORM_CFLAGS := $(filter-out -DRT_REAL_FIXED,$(PLATFORM_CFLAGS)) $(FUZZ_SAN) -fsanitize=fuzzer-no-link
+fuzz_real_flag = $(if $(filter fixed,$(1)),-DRT_REAL_FIXED)
+fuzz_core_src = $(filter-out core/real_%.c,$(wildcard core/*.c)) $(wildcard core/real_$(1)*.c)
+fuzz_targets = $(if $(filter fixed,$(1)),$(FUZZ_CORE_TARGETS),$(FUZZ_ALL))
+
+FUZZ_BINS := $(foreach v,$(FUZZ_VARIANTS),$(addprefix $(FUZZ_BUILD)/$(v)/,$(call fuzz_targets,$(v))))
+
+.PHONY: fuzz-deps fuzz-build fuzz fuzz-clean check-asan
+clean: fuzz-clean
+
+define FUZZ_VARIANT_RULES
+# Objects are intermediates of the pattern chain; keep them for incremental builds.
+.PRECIOUS: $(FUZZ_BUILD)/$(1)/core/%.o $(FUZZ_BUILD)/$(1)/platform/%.o $(FUZZ_BUILD)/$(1)/fuzz/%.o
+
+$(FUZZ_BUILD)/$(1)/core/%.o: core/%.c
+	@mkdir -p $$(@D)
+	$(FUZZ_CC) $(FUZZ_CORE_CFLAGS) $(call fuzz_real_flag,$(1)) -MMD -MP -c $$< -o $$@
+
+$(FUZZ_BUILD)/$(1)/platform/%.o: platform/%.c
+	@mkdir -p $$(@D)
+	$(FUZZ_CC) $(FUZZ_PLATFORM_CFLAGS) $(call fuzz_real_flag,$(1)) -MMD -MP -c $$< -o $$@
+
+$(FUZZ_BUILD)/$(1)/fuzz/%.o: fuzz/%.c
+	@mkdir -p $$(@D)
+	$(FUZZ_CC) $(FUZZ_PLATFORM_CFLAGS) $(call fuzz_real_flag,$(1)) -Iplatform -MMD -MP -c $$< -o $$@
+
+$(FUZZ_BUILD)/$(1)/librtcore.a: $(patsubst %.c,$(FUZZ_BUILD)/$(1)/%.o,$(call fuzz_core_src,$(1)))
+	@rm -f $$@
+	ar rcs $$@ $$^
+
+$(FUZZ_BUILD)/$(1)/librtplatform.a: $(patsubst %.c,$(FUZZ_BUILD)/$(1)/%.o,$(PLATFORM_SRC))
+	@rm -f $$@
+	ar rcs $$@ $$^
+
+$(FUZZ_BUILD)/$(1)/fuzz_%: $(FUZZ_BUILD)/$(1)/fuzz/fuzz_%.o $(patsubst %.c,$(FUZZ_BUILD)/$(1)/%.o,$(FUZZ_HELPERS)) \
+		$(if $(filter fixed,$(1)),,$(FUZZ_BUILD)/$(1)/librtplatform.a) $(FUZZ_BUILD)/$(1)/librtcore.a
+	$(FUZZ_CC) -fsanitize=fuzzer $(FUZZ_SAN) -o $$@ $$^ $(LDLIBS)
+endef
+$(foreach v,$(FUZZ_VARIANTS),$(eval $(call FUZZ_VARIANT_RULES,$(v))))
+
+# clang and its libFuzzer runtime, installed like `make deps` does when missing.
+fuzz-deps:
+	@command -v $(FUZZ_CC) >/dev/null && [ -n "$$($(FUZZ_CC) -print-file-name=libclang_rt.fuzzer-x86_64.a | grep /)" ] || { \
+	  if [ "$$(id -u)" = 0 ]; then sudo=""; else sudo=sudo; fi; \
+	  $$sudo apt-get update -qq && $$sudo apt-get install -y -qq clang libclang-rt-14-dev; }
+
+fuzz-build: fuzz-deps
+	$(MAKE) $(FUZZ_BINS)
+
+# Each target runs on a scratch copy of its seed corpus; any crash, leak, sanitizer
+# report or broken invariant fails the run and leaves the input in the scratch folder.
+fuzz: fuzz-build
+	fuzz/run.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_JOBS) $(FUZZ_BINS)
+
+fuzz-clean:
+	rm -rf $(FUZZ_BUILD) build-asan build-asan-fixed
+
+ASAN_BUILD := build-asan$(if $(filter fixed,$(RT_REAL)),-fixed)
+ASAN_FLAGS := -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+
+# OPT reaches both the compile and the link lines of the top-level rules.
+check-asan: deps
+	$(MAKE) BUILD=$(ASAN_BUILD) OPT="$(ASAN_FLAGS)" $(ASAN_BUILD)/rtk $(ASAN_BUILD)/rtk-tests
+	fuzz/sanitized.sh $(ASAN_BUILD)/sanitizer-reports $(ASAN_BUILD)/rtk-tests --jobs 2
+
+-include $(wildcard $(FUZZ_BUILD)/*/*/*.d)

@@ -1,0 +1,148 @@
+/* libFuzzer target: BVH build and traversal (core/bvh.c) against testing every
+ * primitive. For a soup of triangles, spheres and cylinders from the bytes,
+ * rt_scene_nearest with and without the BVH must agree on hit or miss, on the
+ * primitive (ties go to the lower reference) and on t, bit for bit. */
+#include <string.h>
+
+#include "check.h"
+#include "fixture.h"
+#include "oracle.h"
+
+#define MAX_TRIANGLES 48
+#define MAX_QUADRICS 16
+
+typedef enum { COORD_RANGE, COORD_LATTICE } coord_mode;
+
+/* A coordinate in [-range, range], or on a small lattice there (exact ties, shared
+ * edges, axis-aligned faces). */
+static rt_real coord(fz_bytes *in, coord_mode mode, double range)
+{
+    if (mode == COORD_LATTICE) return rt_mul(rt_from_int((int)fz_below(in, 9) - 4), rt_from_double(range / 4));
+    return rt_from_double(fz_range(in, -range, range));
+}
+
+static rt_vec3 point(fz_bytes *in, coord_mode mode, double range)
+{
+    rt_real x = coord(in, mode, range), y = coord(in, mode, range);
+    return rt_v3(x, y, coord(in, mode, range));
+}
+
+/* Every reference sits in exactly one leaf, inside the leaf's box; children lie inside their parent. */
+static void check_tree(const rt_scene *s)
+{
+    const rt_bvh *bvh = &s->bvh;
+    static uint8_t seen[MAX_TRIANGLES + MAX_QUADRICS];
+    memset(seen, 0, sizeof seen);
+    FZ_CHECK(bvh->node_count <= 2 * s->prim_count - 1 && bvh->depth <= RT_BVH_MAX_DEPTH, "%u nodes, depth %u for %u primitives",
+             bvh->node_count, bvh->depth, s->prim_count);
+    for (uint32_t i = 0; i < bvh->node_count; i++) {
+        const rt_bvh_node *n = &bvh->nodes[i];
+        const rt_aabb *box = &n->bounds;
+        if (n->count == 0) {
+            FZ_CHECK(n->first > i && n->first + 1 < bvh->node_count, "node %u has children %u", i, n->first);
+            for (uint32_t c = n->first; c < n->first + 2; c++) {
+                const rt_aabb *b = &bvh->nodes[c].bounds;
+                FZ_CHECK(box->lo.x <= b->lo.x && box->lo.y <= b->lo.y && box->lo.z <= b->lo.z && b->hi.x <= box->hi.x &&
+                             b->hi.y <= box->hi.y && b->hi.z <= box->hi.z,
+                         "child %u pokes out of node %u", c, i);
+            }
+            continue;
+        }
+        FZ_CHECK(n->first + n->count <= s->prim_count, "leaf %u covers refs %u..%u", i, n->first, n->first + n->count);
+        for (uint32_t k = n->first; k < n->first + n->count; k++) {
+            uint32_t prim = bvh->prim_refs[k];
+            FZ_CHECK(prim < s->prim_count && !seen[prim], "primitive %u referenced twice or out of range", prim);
+            seen[prim] = 1;
+            rt_aabb b = rt_prim_bounds(s, prim);
+            FZ_CHECK(box->lo.x <= b.lo.x && box->lo.y <= b.lo.y && box->lo.z <= b.lo.z && b.hi.x <= box->hi.x &&
+                         b.hi.y <= box->hi.y && b.hi.z <= box->hi.z,
+                     "primitive %u pokes out of leaf %u", prim, i);
+        }
+    }
+    for (uint32_t p = 0; p < s->prim_count; p++) FZ_CHECK(seen[p], "primitive %u is in no leaf", p);
+}
+
+static void check_ray(const rt_scene *s, rt_ray ray)
+{
+    rt_ray_setup rs = rt_ray_prepare(ray);
+    rt_scene_hit a, b;
+    memset(&a, 0, sizeof a);
+    memset(&b, 0, sizeof b);
+    bool hit_a = rt_scene_nearest(s, &rs, true, &a), hit_b = rt_scene_nearest(s, &rs, false, &b);
+    if ((hit_a && fz_grazing(s, a.prim, &ray)) || (hit_b && fz_grazing(s, b.prim, &ray))) return;
+    FZ_CHECK(hit_a == hit_b, "BVH %s, brute force %s", hit_a ? "hits" : "misses", hit_b ? "hits" : "misses");
+    if (!hit_a) return;
+    fz_check_t(a.hit.t, ray.t_min, ray.t_max);
+    FZ_CHECK(a.prim == b.prim, "BVH hits primitive %u at t = %.17g, brute force %u at t = %.17g", a.prim,
+             rt_to_double(a.hit.t), b.prim, rt_to_double(b.hit.t));
+    FZ_CHECK(memcmp(&a.hit.t, &b.hit.t, sizeof a.hit.t) == 0 && memcmp(&a.hit.b1, &b.hit.b1, sizeof a.hit.b1) == 0 &&
+                 memcmp(&a.hit.b2, &b.hit.b2, sizeof a.hit.b2) == 0 && a.hit.part == b.hit.part,
+             "same primitive %u, different hit records", a.prim);
+    /* The documented tie rule: no lower reference hits at the same t. */
+    for (uint32_t p = 0; p < a.prim; p++) {
+        rt_prim_hit h;
+        FZ_CHECK(!rt_prim_intersect(s, p, &rs, &h) || h.t != a.hit.t, "primitive %u ties with %u at t = %.17g and is lower", p,
+                 a.prim, rt_to_double(a.hit.t));
+    }
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    fz_bytes in = fz_bytes_of(data, size);
+    uint8_t layout = fz_u8(&in);
+    coord_mode mode = (coord_mode)(layout % 2);
+    /* Any scale from 2^-40 to 2^40, but within one scene objects are at most 2^8
+     * smaller than the scene: far beyond that the quadrics' own rounding (about
+     * eps |o|^2 / r, see docs/robustness.md) exceeds the BVH's padding. */
+    double range = fz_pow2(&in, -40, 40);
+    uint32_t n_tri = fz_below(&in, MAX_TRIANGLES + 1), n_quad = fz_below(&in, MAX_QUADRICS + 1);
+    static rt_vec3 pos[3 * MAX_TRIANGLES];
+    static uint32_t idx[3 * MAX_TRIANGLES];
+    for (uint32_t i = 0; i < 3 * n_tri; i++) {
+        idx[i] = i;
+        uint8_t how = fz_u8(&in);
+        /* Repeats make exact ties: a whole triangle again, or a shared vertex. */
+        if (i >= 3 && how % 8 == 0) pos[i] = pos[i - 3];
+        else if (i >= 1 && how % 8 == 1) pos[i] = pos[fz_below(&in, i)];
+        else pos[i] = point(&in, mode, range);
+    }
+    static const rt_material material = {
+        .diffuse = {.texture = RT_NO_TEXTURE}, .specular = {.texture = RT_NO_TEXTURE},
+        .emissive = {.texture = RT_NO_TEXTURE}, .transmittance = {.texture = RT_NO_TEXTURE},
+        .index_of_refraction = RT_C(1.0)};
+    rt_mesh_desc mesh = {pos, NULL, NULL, 3 * n_tri, idx, n_tri};
+    rt_object_desc objects[1 + MAX_QUADRICS] = {{.kind = RT_SHAPE_MESH, .world = rt_affine_identity()}};
+    for (uint32_t i = 1; i <= n_quad; i++) {
+        uint8_t how = fz_u8(&in);
+        objects[i].kind = how & 1 ? RT_SHAPE_CYLINDER : RT_SHAPE_SPHERE;
+        if (i > 1 && how % 8 < 2) {
+            objects[i].world = objects[i - 1].world;
+            continue;
+        }
+        rt_vec3 rot = how & 2 ? fz_vec_range(&in, -180, 180) : rt_v3(RT_ZERO, RT_ZERO, RT_ZERO);
+        rt_real sx = rt_from_double(range * fz_pow2(&in, -8, 1)), sy = how & 4 ? sx : rt_from_double(range * fz_pow2(&in, -8, 1));
+        objects[i].world = rt_affine_trs(point(&in, mode, range), rot, rt_v3(sx, sy, sx));
+    }
+    rt_scene_desc desc = {0};
+    desc.materials = &material;
+    desc.material_count = 1;
+    desc.meshes = &mesh;
+    desc.mesh_count = 1;
+    desc.objects = objects;
+    desc.object_count = 1 + n_quad;
+    desc.camera = fz_camera();
+    rt_scene s;
+    rt_build_error err;
+    if (fz_build(&desc, &s, &err) != RT_OK) return 0; /* raw coordinates can overflow a transform */
+    if (s.prim_count == 0) return 0;
+    check_tree(&s);
+    while (in.pos < in.size) {
+        uint8_t kind = fz_u8(&in) % 4;
+        rt_vec3 target = kind == 0 || n_tri == 0 ? point(&in, mode, range) : s.positions[fz_below(&in, s.vertex_count)];
+        /* Aimed at a point or a vertex (edges and ties), often along an axis. */
+        rt_ray ray = kind == 2 ? fz_ray_axis(&in, target) : fz_ray_through(&in, target);
+        ray.origin = rt_v3_madd(target, ray.direction, rt_from_double(-range * fz_pow2(&in, -3, 3)));
+        check_ray(&s, ray);
+    }
+    return 0;
+}
