@@ -77,18 +77,22 @@ static RTCScene new_scene(RTCDevice device, const bench_workload *w)
     return scene;
 }
 
-/* Best-of-`repeats` seconds of rtcCommitScene on a fresh scene. */
-static double time_build(RTCDevice device, const bench_workload *w, uint32_t repeats, const char *label)
+/* Best-of-`repeats` wall seconds of rtcCommitScene on a fresh scene; *best_cpu gets the
+ * smallest process CPU time of one commit. */
+static double time_build(RTCDevice device, const bench_workload *w, uint32_t repeats, const char *label,
+                         double *best_cpu)
 {
     double best = 0.0;
     for (uint32_t r = 0; r < repeats; r++) {
         fprintf(stderr, "  embree: BVH build (%s) %u/%u\n", label, r + 1, repeats);
         RTCScene scene = new_scene(device, w);
-        double start = bench_now();
+        double start = bench_now(), cpu = bench_cpu_now();
         rtcCommitScene(scene);
         double s = bench_now() - start;
+        cpu = bench_cpu_now() - cpu;
         rtcReleaseScene(scene);
         if (r == 0 || s < best) best = s;
+        if (r == 0 || cpu < *best_cpu) *best_cpu = cpu;
     }
     return best;
 }
@@ -179,10 +183,11 @@ int main(int argc, char **argv)
     bench_workload w;
     if (!bench_workload_read(argv[1], &w)) return 1;
     RTCDevice one = new_device("threads=1");
-    double build_1 = time_build(one, &w, repeats, "1 thread");
+    double build_1_cpu, build_all_cpu;
+    double build_1 = time_build(one, &w, repeats, "1 thread", &build_1_cpu);
     rtcReleaseDevice(one);
     RTCDevice all = new_device(NULL);
-    double build_all = time_build(all, &w, repeats, "all threads");
+    double build_all = time_build(all, &w, repeats, "all threads", &build_all_cpu);
     atomic_store(&device_bytes, 0);
     RTCScene scene = new_scene(all, &w);
     rtcCommitScene(scene);
@@ -190,8 +195,8 @@ int main(int argc, char **argv)
     ssize_t version = rtcGetDeviceProperty(all, RTC_DEVICE_PROPERTY_VERSION); /* e.g. 31305 for 3.13.5 */
     printf("kernel embree-%zd.%zd.%zd\nthreads_all %u\nvertices %u\ntriangles %u\n", version / 10000,
            version / 100 % 100, version % 100, bench_cpu_count(), w.vertex_count, w.triangle_count);
-    printf("bytes_per_tri %.1f\nbuild_s %.4f\nbuild_all_s %.4f\n", (double)bytes / (w.triangle_count ? w.triangle_count : 1),
-           build_1, build_all);
+    printf("bytes_per_tri %.1f\nbuild_s %.4f\nbuild_cpu_s %.4f\nbuild_all_s %.4f\n",
+           (double)bytes / (w.triangle_count ? w.triangle_count : 1), build_1, build_1_cpu, build_all);
     bool ok = time_queries("primary", scene, w.primary, w.primary_count, repeats, intersect_range) &&
               time_queries("shadow", scene, w.shadow, w.shadow_count, repeats, occluded_range);
     rtcReleaseScene(scene);

@@ -71,24 +71,26 @@ static bool time_build(const rt_scene *scene, uint32_t repeats)
         fprintf(stderr, "rtk-bench: cannot allocate %zu MiB for the BVH build\n", size >> 20);
         return false;
     }
-    double best = 0.0;
+    double best = 0.0, best_cpu = 0.0;
     for (uint32_t r = 0; r < repeats; r++) {
         fprintf(stderr, "  rtk %s: BVH build %u/%u\n", RT_REAL_NAME, r + 1, repeats);
         rt_arena arena;
         rt_arena_init(&arena, memory, size);
         rt_scene copy = *scene;
-        double start = bench_now();
+        double start = bench_now(), cpu = bench_cpu_now();
         rt_status st = rt_bvh_build(&copy, &arena);
         double s = bench_now() - start;
+        cpu = bench_cpu_now() - cpu;
         if (st != RT_OK) {
             fprintf(stderr, "rtk-bench: BVH build failed: %s\n", rt_status_name(st));
             free(memory);
             return false;
         }
         if (r == 0 || s < best) best = s;
+        if (r == 0 || cpu < best_cpu) best_cpu = cpu;
     }
     free(memory);
-    printf("build_s %.4f\n", best);
+    printf("build_s %.4f\nbuild_cpu_s %.4f\n", best, best_cpu);
     return true;
 }
 
