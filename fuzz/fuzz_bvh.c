@@ -2,6 +2,7 @@
  * primitive. For a soup of triangles, spheres and cylinders from the bytes,
  * rt_scene_nearest with and without the BVH must agree on hit or miss, on the
  * primitive (ties go to the lower reference) and on t, bit for bit. */
+#include <math.h>
 #include <string.h>
 
 #include "check.h"
@@ -91,10 +92,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     fz_bytes in = fz_bytes_of(data, size);
     uint8_t layout = fz_u8(&in);
     coord_mode mode = (coord_mode)(layout % 2);
-    /* Any scale from 2^-40 to 2^40, but within one scene objects are at most 2^8
-     * smaller than the scene: far beyond that the quadrics' own rounding (about
-     * eps |o|^2 / r, see docs/robustness.md) exceeds the BVH's padding. */
-    double range = fz_pow2(&in, -40, 40);
+    /* Any scale from 2^-40 to 2^40 (fixed: 2^-2 to 2^10), but within one scene
+     * objects are at most 2^8 smaller than the scene: far beyond that the quadrics'
+     * own rounding (about eps |o|^2 / r, docs/robustness.md) exceeds the BVH's padding. */
+    double range = fz_pow2(&in, FZ_SIZE_LOG2_MIN, FZ_SIZE_LOG2_MAX);
     uint32_t n_tri = fz_below(&in, MAX_TRIANGLES + 1), n_quad = fz_below(&in, MAX_QUADRICS + 1);
     static rt_vec3 pos[3 * MAX_TRIANGLES];
     static uint32_t idx[3 * MAX_TRIANGLES];
@@ -120,7 +121,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             continue;
         }
         rt_vec3 rot = how & 2 ? fz_vec_range(&in, -180, 180) : rt_v3(RT_ZERO, RT_ZERO, RT_ZERO);
-        rt_real sx = rt_from_double(range * fz_pow2(&in, -8, 1)), sy = how & 4 ? sx : rt_from_double(range * fz_pow2(&in, -8, 1));
+        double smallest = exp2(FZ_SIZE_LOG2_MIN);
+        rt_real sx = rt_from_double(fmax(range * fz_pow2(&in, -8, 1), smallest));
+        rt_real sy = how & 4 ? sx : rt_from_double(fmax(range * fz_pow2(&in, -8, 1), smallest));
         objects[i].world = rt_affine_trs(point(&in, mode, range), rot, rt_v3(sx, sy, sx));
     }
     rt_scene_desc desc = {0};

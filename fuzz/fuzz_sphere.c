@@ -8,8 +8,9 @@
 #include "surface.h"
 
 /* Raw scalars straight into the intersector: no crash, no UB, no t outside the
- * interval, and no hit on a line that passes clear of the sphere's bounding sphere, however large
- * the numbers (long double does not overflow where the kernel does). */
+ * interval, and no hit on a line that passes clear of the sphere's bounding sphere
+ * by more than rounding allows, however large the numbers (long double does not
+ * overflow where the kernel does). */
 static void raw_ray(fz_bytes *in)
 {
     rt_vec3 o = fz_vec_raw(in), d = fz_vec_raw(in);
@@ -18,11 +19,11 @@ static void raw_ray(fz_bytes *in)
     if (!rt_intersect_sphere(o, d, t_min, t_max, &h)) return;
     fz_check_t(h.t, t_min, t_max);
     if (!fz_finite3(o) || !fz_finite3(d) || rt_v3_is_zero(d)) return;
-    /* Far from the origin the kernel's own rounding blurs distances by about
-     * sqrt(eps) |o|, so the bound widens with |o|^2. */
+    long double o2 = fz_l_dot(fz_l(o), fz_l(o)), slack = fz_quadric_slack(o2, fz_l_dot(fz_l(d), fz_l(d)));
+    if (slack < 0) return;
     long double dist = fz_line_distance(fz_l(o), fz_l(d), (fz_v3l){0, 0, 0});
-    long double bound = (0.25L + 64 * FZ_EPS * (fz_l_dot(fz_l(o), fz_l(o)) + 1)) * (1 + FZ_MARGIN);
-    FZ_CHECK(!(dist * dist > bound), "hit at t = %.17g on a line %.3Lg from the centre", rt_to_double(h.t), dist);
+    FZ_CHECK(!(dist * dist > (0.25L + slack) * (1 + FZ_MARGIN)), "hit at t = %.17g on a line %.3Lg from the centre",
+             rt_to_double(h.t), dist);
 }
 
 /* The crossings of the object-space line o + t d with the sphere |p| = 0.5. */

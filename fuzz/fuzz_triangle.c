@@ -17,13 +17,13 @@ static void raw_ray(fz_bytes *in)
     if (rt_intersect_triangle(&rs, a, b, c, &h)) fz_check_t(h.t, ray.t_min, ray.t_max);
 }
 
-/* Three vertices of size ~2^-8..2^8 around a centre up to 64 away, sometimes on a
+/* Three vertices of size ~2^-8 (2^-2 in the fixed build)..2^8 around a centre up to 64 away, sometimes on a
  * small integer lattice (exact edges, axis-aligned faces) or degenerate. */
 static void vertices(fz_bytes *in, rt_vec3 v[3])
 {
     uint8_t shape = fz_u8(in);
     rt_vec3 centre = shape & 1 ? fz_vec_range(in, -64, 64) : rt_v3(RT_ZERO, RT_ZERO, RT_ZERO);
-    rt_real size = rt_from_double(fz_pow2(in, -8, 8));
+    rt_real size = rt_from_double(fz_pow2(in, FZ_SIZE_LOG2_MIN > -8 ? FZ_SIZE_LOG2_MIN : -8, 8));
     for (int k = 0; k < 3; k++) {
         rt_vec3 p = fz_vec_range(in, -1, 1);
         if (shape & 2) p = rt_v3(rt_from_int(fz_below(in, 5)), rt_from_int(fz_below(in, 5)), rt_from_int(fz_below(in, 5)));

@@ -79,6 +79,13 @@ bool fz_slab(fz_v3l o, fz_v3l d, long double h, long double *t_in, long double *
     return lo <= hi;
 }
 
+long double fz_quadric_slack(long double o2, long double d2)
+{
+    /* c = |o|^2 - r^2 cancels: distances blur by about eps |o|^2 (docs/robustness.md). */
+    if (FZ_ABS > 0 && !(o2 <= 1e6L && d2 >= 1e-2L && d2 <= 1e2L)) return -1;
+    return 64 * FZ_EPS * (o2 + 1) + 1e4L * FZ_ABS * (o2 + 1) / d2;
+}
+
 bool fz_finite3(rt_vec3 v) { return rt_is_finite(v.x) && rt_is_finite(v.y) && rt_is_finite(v.z); }
 
 void fz_check_crossings(const fz_crossing *c, int n, bool found, rt_real t, rt_real t_min, rt_real t_max)
@@ -116,7 +123,9 @@ bool fz_triangle_crossing(rt_vec3 a, rt_vec3 b, rt_vec3 c, rt_vec3 o, rt_vec3 d,
     fz_v3l n = fz_l_cross(ab, ac);
     long double nn = fz_l_dot(n, n), nd = fz_l_dot(n, D);
     long double l2 = fmaxl(fz_l_dot(ab, ab), fz_l_dot(ac, ac));
-    if (!(nn > 1e-12L * l2 * l2) || fabsl(nd) < 1e-9L * sqrtl(nn)) return false;
+    /* Rounding tilts a plane by about FZ_ABS / edge in the fixed build. */
+    long double l_min = sqrtl(fminl(fminl(fz_l_dot(ab, ab), fz_l_dot(ac, ac)), fz_l_dot(fz_l_sub(C, B), fz_l_sub(C, B))));
+    if (!(nn > 1e-12L * l2 * l2) || !(fabsl(nd) >= (1e-9L + 1e3L * FZ_ABS / l_min) * sqrtl(nn))) return false;
     long double t = fz_l_dot(n, fz_l_sub(A, O)) / nd;
     fz_v3l ap = fz_l_sub(fz_l_along(O, D, t), A);
     out->t = t;
@@ -127,7 +136,7 @@ bool fz_triangle_crossing(rt_vec3 a, rt_vec3 b, rt_vec3 c, rt_vec3 o, rt_vec3 d,
     long double far = fmaxl(fmaxl(fz_l_len(fz_l_sub(A, O)), fz_l_len(fz_l_sub(B, O))), fz_l_len(fz_l_sub(C, O)));
     long double big = fmaxl(fmaxl(fz_l_len(A), fz_l_len(B)), fmaxl(fz_l_len(C), fz_l_len(O)));
     long double s = far + big;
-    out->slack = 1e4L * FZ_EPS * s * s / fabsl(nd);
+    out->slack = (1e4L * FZ_EPS * s * s + 1e4L * FZ_ABS * s) / fabsl(nd);
     out->tol_t = out->slack * s + 1e4L * FZ_EPS * fabsl(t);
     return true;
 }

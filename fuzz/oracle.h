@@ -8,21 +8,30 @@
 #include "vec.h"
 
 /* Tolerances per scalar backend, all relative to the scene's scale S:
- * FZ_EPS      the backend's rounding unit (relative for double, absolute for fixed);
+ * FZ_EPS      the backend's relative rounding unit, FZ_ABS its absolute one (fixed);
+ * FZ_SIZE_LOG2_MIN/MAX  the range of object sizes (log2) the targets generate;
  * FZ_TOL      a point the kernel reports lies within FZ_TOL * S of the surface;
  * FZ_MARGIN   the oracle only insists on hit or miss when the ray clears the
  *             surface's boundary by FZ_MARGIN * S (else the case is ambiguous);
  * FZ_TOL_T    a reported t equals the oracle's within FZ_TOL_T * S / |d|. */
 #if defined(RT_REAL_FIXED)
 #define FZ_EPS 0x1p-32L
+#define FZ_ABS 0x1p-32L
 #define FZ_TOL 1e-6L
-#define FZ_MARGIN 1e-3L
-#define FZ_TOL_T 1e-4L
+#define FZ_MARGIN 1e-6L
+#define FZ_TOL_T 1e-6L
+/* Q32.32 has one absolute lsb: geometry below ~1/4 and beyond ~2^10 leaves its
+ * comfortable range (docs/fixed-point.md), so the targets stay inside it. */
+#define FZ_SIZE_LOG2_MIN -2
+#define FZ_SIZE_LOG2_MAX 10
 #else
 #define FZ_EPS 0x1p-52L
+#define FZ_ABS 0.0L
 #define FZ_TOL 1e-12L
 #define FZ_MARGIN 1e-9L
 #define FZ_TOL_T 1e-9L
+#define FZ_SIZE_LOG2_MIN -40
+#define FZ_SIZE_LOG2_MAX 40
 #endif
 
 typedef struct { long double x, y, z; } fz_v3l;
@@ -43,6 +52,11 @@ bool fz_quadratic(long double a, long double b, long double c, long double *t0, 
 /* Where the line o + t d is inside the box [-h, h]^3: entry and exit parameters
  * (either may be negative); false when the line misses the box. */
 bool fz_slab(fz_v3l o, fz_v3l d, long double h, long double *t_in, long double *t_out);
+/* How far beyond radius^2 a line's squared distance from a quadric's centre may be
+ * while rounding still lets the kernel see a hit, for an object-space ray with
+ * o2 = |o|^2, d2 = |d|^2; negative when the backend makes no promise there (the fixed
+ * build saturates far outside its range). */
+long double fz_quadric_slack(long double o2, long double d2);
 /* True when every component of v is finite. */
 bool fz_finite3(rt_vec3 v);
 
