@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 static bool is_null(const yaml_node_t *n)
 {
@@ -68,6 +69,38 @@ static bool parse_error(rt_yaml *y, const yaml_parser_t *p)
     return false;
 }
 
+/* libyaml 0.2.5 scans in time quadratic in the nesting depth (a 100 KB file of '['
+ * takes minutes), so a first pass over the events refuses deep documents before
+ * yaml_parser_load reads them. Only the first document is looked at, as the load does. */
+static bool check_depth(rt_yaml *y, FILE *f)
+{
+    yaml_parser_t parser;
+    if (!yaml_parser_initialize(&parser)) return rt_yaml_fail(y, NULL, NULL, "out of memory");
+    yaml_parser_set_input_file(&parser, f);
+    bool ok = true, done = false;
+    unsigned depth = 0;
+    while (ok && !done) {
+        yaml_event_t event;
+        if (!yaml_parser_parse(&parser, &event)) {
+            ok = parse_error(y, &parser);
+            break;
+        }
+        if (event.type == YAML_SEQUENCE_START_EVENT || event.type == YAML_MAPPING_START_EVENT) {
+            if (++depth > RT_YAML_MAX_DEPTH) {
+                snprintf(y->err, y->err_size, "%s:%zu:%zu: invalid YAML: nested more than %d levels deep", y->file,
+                         event.start_mark.line + 1, event.start_mark.column + 1, RT_YAML_MAX_DEPTH);
+                ok = false;
+            }
+        } else if (event.type == YAML_SEQUENCE_END_EVENT || event.type == YAML_MAPPING_END_EVENT) {
+            depth--;
+        }
+        done = event.type == YAML_DOCUMENT_END_EVENT || event.type == YAML_STREAM_END_EVENT;
+        yaml_event_delete(&event);
+    }
+    yaml_parser_delete(&parser);
+    return ok;
+}
+
 bool rt_yaml_open(rt_yaml *y, const char *file, char *err, size_t err_size)
 {
     memset(y, 0, sizeof *y);
@@ -79,6 +112,17 @@ bool rt_yaml_open(rt_yaml *y, const char *file, char *err, size_t err_size)
         snprintf(err, err_size, "%s: cannot open: %s", file, strerror(errno));
         return false;
     }
+    struct stat st;
+    if (fstat(fileno(f), &st) == 0 && S_ISDIR(st.st_mode)) {
+        fclose(f);
+        snprintf(err, err_size, "%s: is a directory", file);
+        return false;
+    }
+    if (!check_depth(y, f)) {
+        fclose(f);
+        return false;
+    }
+    rewind(f);
     yaml_parser_t parser;
     if (!yaml_parser_initialize(&parser)) {
         fclose(f);

@@ -13,6 +13,9 @@
 #include <yaml.h>
 
 #define RT_YAML_PATH_SIZE 512
+/* Maps and lists nested deeper are refused; well above the two levels (a map and a
+ * Children list) each of scene_load's at most 1000 nested nodes takes. */
+#define RT_YAML_MAX_DEPTH 4096
 
 typedef struct {
     yaml_document_t doc;
@@ -23,8 +26,9 @@ typedef struct {
     size_t err_size;
 } rt_yaml;
 
-/* Parses the first document of file. Documents in which a node is reached twice
- * (aliases) are refused, so the document is a tree and walking it is linear. */
+/* Parses the first document of file. Documents nested deeper than RT_YAML_MAX_DEPTH,
+ * and documents in which a node is reached twice (aliases), are refused, so the
+ * document is a tree and walking it is linear. */
 bool rt_yaml_open(rt_yaml *y, const char *file, char *err, size_t err_size);
 void rt_yaml_close(rt_yaml *y);
 yaml_node_t *rt_yaml_root(rt_yaml *y);
