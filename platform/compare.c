@@ -128,9 +128,7 @@ static int usage_error(const char *fmt, const char *arg)
 {
     fputs("rtk compare: ", stderr);
     fprintf(stderr, fmt, arg);
-    fputs("\n", stderr);
-    fputs(usage_line, stderr);
-    fputs("run 'rtk compare --help' for details\n", stderr);
+    fputs(" (see rtk compare --help)\n", stderr);
     return RT_EXIT_USAGE;
 }
 

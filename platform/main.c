@@ -27,7 +27,7 @@ static const char usage[] =
 int main(int argc, char **argv)
 {
     if (argc < 2) {
-        fputs(usage, stderr);
+        fputs("rtk: no command given (see rtk --help)\n", stderr);
         return RT_EXIT_USAGE;
     }
     const char *cmd = argv[1];
