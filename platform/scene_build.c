@@ -46,9 +46,11 @@ int rt_scene_open(const char *path, const rt_build_options *opt, rt_built_scene 
             continue;
         }
         const char *name = object_name(&out->loaded, be.object);
+        /* In bytes when the cap is not whole MiB, so --max-memory 1K does not read "0 MiB". */
+        bool mib = opt->max_memory % ((size_t)1 << 20) == 0;
         if (st == RT_ERR_NOMEM)
-            snprintf(err, err_size, "%s: the scene needs more than --max-memory (%zu MiB): %s", path,
-                     opt->max_memory >> 20, be.what);
+            snprintf(err, err_size, "%s: the scene needs more than --max-memory (%zu %s): %s", path,
+                     mib ? opt->max_memory >> 20 : opt->max_memory, mib ? "MiB" : "bytes", be.what);
         else if (name)
             snprintf(err, err_size, "%s: node '%s': %s", path, name, be.what);
         else
