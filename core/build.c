@@ -94,7 +94,8 @@ static rt_status build_objects(const rt_scene_desc *d, rt_arena *arena, rt_scene
         obj->source = o->source;
         obj->to_world = o->world;
         rt_affine inv;
-        if (!rt_affine_inverse(&o->world, &inv)) return fail(err, RT_ERR_INVALID, "transform is singular (a scale of 0?)", i);
+        if (!rt_affine_inverse(&o->world, &inv))
+            return fail(err, RT_ERR_INVALID, "transform cannot be inverted (a scale of 0, or numbers too large or too small?)", i);
         obj->to_object = inv;
         obj->normal_to_world = rt_mat3_transpose(&inv.linear);
         if (o->kind != RT_SHAPE_MESH) {

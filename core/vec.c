@@ -69,8 +69,11 @@ bool rt_affine_inverse(const rt_affine *a, rt_affine *out)
 {
     rt_mat3 inv;
     if (!rt_mat3_inverse(&a->linear, &inv)) return false;
+    /* A far translation under a small scale can overflow: 1e308 scaled by 2. */
+    rt_vec3 t = rt_v3_neg(rt_mat3_apply(&inv, a->translation));
+    if (!rt_is_finite(t.x) || !rt_is_finite(t.y) || !rt_is_finite(t.z)) return false;
     out->linear = inv;
-    out->translation = rt_v3_neg(rt_mat3_apply(&inv, a->translation));
+    out->translation = t;
     return true;
 }
 

@@ -55,6 +55,7 @@ rt_mat3 rt_mat3_transpose(const rt_mat3 *a);
 bool rt_mat3_inverse(const rt_mat3 *a, rt_mat3 *out);
 rt_affine rt_affine_identity(void);
 rt_affine rt_affine_mul(const rt_affine *a, const rt_affine *b);
+/* Inverse of a; false (and *out untouched) when it is singular or not finite. */
 bool rt_affine_inverse(const rt_affine *a, rt_affine *out);
 /* The format's node transform: T(translation) * Rx * Ry * Rz * S(scale), angles in degrees. */
 rt_affine rt_affine_trs(rt_vec3 translation, rt_vec3 rotation_degrees, rt_vec3 scale);
