@@ -7,6 +7,7 @@
 #include "scene_load.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -249,6 +250,8 @@ static bool material_entry(loader *L, const char *name, const yaml_node_t *entry
         !load_channel(L, u, "Transmittence", 0.0, &m->transmittance) ||
         !rt_yaml_real(y, u, "Shininess", 20.0, &shininess) || !rt_yaml_real(y, u, "IndexOfRefraction", 1.0, &ior))
         return false;
+    if (!(ior > 0.0))
+        return rt_yaml_expected(y, rt_yaml_get(y, u, "IndexOfRefraction"), "IndexOfRefraction", "a number above 0");
     rt_yaml_pop(y, mark);
     m->shininess = rt_from_double(shininess);
     m->index_of_refraction = rt_from_double(ior);
@@ -272,7 +275,7 @@ static bool read_camera(rt_yaml *y, const yaml_node_t *c, const rt_affine *world
         !rt_yaml_map(y, c, "Trace", false, &t))
         return false;
     size_t mark = rt_yaml_push(y, "Trace");
-    if (!rt_yaml_uint(y, t, "Maximum Recursion Depth", 5, 0, UINT32_MAX, &s->max_depth) ||
+    if (!rt_yaml_uint(y, t, "Maximum Recursion Depth", 5, 0, RT_MAX_RECURSION_DEPTH, &s->max_depth) ||
         !rt_yaml_index(y, t, "Shadows", 0, 2, &s->shadows) ||
         !rt_yaml_bool(y, t, "Reflections", true, &s->reflections) ||
         !rt_yaml_bool(y, t, "Refractions", true, &s->refractions) ||
@@ -289,6 +292,8 @@ static bool read_camera(rt_yaml *y, const yaml_node_t *c, const rt_affine *world
         !rt_yaml_real(y, t, "Std. Error Threshold", 0.02, &std_error))
         return false;
     rt_yaml_pop(y, mark);
+    if (!(fov > 0.0 && fov < 180.0))
+        return rt_yaml_expected(y, rt_yaml_get(y, c, "FOV"), "FOV", "degrees between 0 and 180 (both excluded)");
     cam->fov_degrees = rt_from_double(fov);
     cam->ortho_width = rt_from_double(ortho);
     s->focus_distance = rt_from_double(focus);
@@ -320,9 +325,18 @@ static bool load_light(loader *L, const yaml_node_t *c, rt_light_kind kind, cons
                                                  rt_yaml_real(y, c, "Linear Atten", 0.0, &atten[1]) &&
                                                  rt_yaml_real(y, c, "Quad Atten", 0.2, &atten[2]);
     if (!ok) return false;
+    for (int i = 0; i < 3; i++) {
+        color[i] *= multiplier;
+        if (!isfinite(color[i]))
+            return rt_yaml_fail(y, rt_yaml_get(y, c, "Intensity Multiplier"), "Intensity Multiplier",
+                                "Color times Intensity Multiplier overflows");
+    }
+    /* A directional light shines along its node's local +Y axis (as core/build.c derives it). */
+    if (kind == RT_LIGHT_DIRECTIONAL &&
+        rt_v3_is_zero(rt_v3_normalize(rt_affine_vector(world, rt_v3(RT_ZERO, RT_ONE, RT_ZERO)))))
+        return rt_yaml_fail(y, c, NULL, "the node's Transform scales its Y axis to 0: the light has no direction");
     rt_light_desc *l = push(L, &L->st->lights, sizeof *l);
     if (!l) return false;
-    for (int i = 0; i < 3; i++) color[i] *= multiplier;
     l->kind = kind;
     l->world = *world;
     l->color = vec3(color);
@@ -435,6 +449,15 @@ static bool load_component(loader *L, const yaml_node_t *key, const yaml_node_t 
 
 /* ---- Node tree ---- */
 
+static bool affine_is_finite(const rt_affine *a)
+{
+    for (int i = 0; i < 3; i++)
+        if (!rt_is_finite(a->linear.m[i][0]) || !rt_is_finite(a->linear.m[i][1]) || !rt_is_finite(a->linear.m[i][2]) ||
+            !rt_is_finite(rt_v3_get(a->translation, i)))
+            return false;
+    return true;
+}
+
 /* parent * T * R * S of the node's Transform component (format §4.2). */
 static bool node_transform(rt_yaml *y, const yaml_node_t *components, const rt_affine *parent, rt_affine *world)
 {
@@ -448,6 +471,8 @@ static bool node_transform(rt_yaml *y, const yaml_node_t *components, const rt_a
     rt_yaml_pop(y, mark);
     rt_affine local = rt_affine_trs(vec3(translation), vec3(rotation), vec3(scale));
     *world = rt_affine_mul(parent, &local);
+    if (!affine_is_finite(world))
+        return rt_yaml_fail(y, t, "Transform", "the node's world transform overflows (a huge Scale or Translation?)");
     return true;
 }
 
