@@ -30,13 +30,15 @@ static rt_real aabb_half_area(rt_aabb b)
     return rt_add(rt_add(rt_mul(e.x, e.y), rt_mul(e.y, e.z)), rt_mul(e.z, e.x));
 }
 
-/* Widens a box by a hair so that slab-test rounding never culls a primitive's true hit. */
+/* Widens a box by 2^-20 of its magnitude (plus 2^-20 absolute) so that slab-test and
+ * intersection rounding never cull a primitive's true hit: ample for double, and many
+ * lsb for Q32.32. A wider box only costs a few extra tests. */
 static rt_aabb aabb_pad(rt_aabb b)
 {
     rt_vec3 extent = rt_v3_max(rt_v3(rt_abs(b.lo.x), rt_abs(b.lo.y), rt_abs(b.lo.z)),
                                rt_v3(rt_abs(b.hi.x), rt_abs(b.hi.y), rt_abs(b.hi.z)));
     rt_real m = rt_max(rt_max(extent.x, extent.y), extent.z);
-    rt_real pad = rt_add(rt_mul(m, RT_C(1e-9)), RT_C(1e-9));
+    rt_real pad = rt_mul(rt_add(m, RT_ONE), RT_C(0.00000095367431640625));
     rt_vec3 p = rt_v3(pad, pad, pad);
     rt_aabb r = {rt_v3_sub(b.lo, p), rt_v3_add(b.hi, p)};
     return r;
