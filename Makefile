@@ -90,6 +90,7 @@ check: deps
 	build-fixed/rtk-tests --jobs 2 --filter 'real_fixed/*'
 	tests/golden.sh check build/rtk double
 	tests/golden.sh check build-fixed/rtk fixed
+	tests/bad/run.sh build/rtk
 
 # Same hashes for every thread count, tile size, compiler, -O level and CPU; the core
 # freestanding; the fixed core on a Cortex-M3 under qemu. See docs/determinism.md.
