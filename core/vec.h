@@ -29,9 +29,13 @@ static inline rt_vec3 rt_v3_cross(rt_vec3 a, rt_vec3 b)
                  rt_sub(rt_mul(a.x, b.y), rt_mul(a.y, b.x)));
 }
 static inline rt_real rt_v3_length(rt_vec3 a) { return rt_sqrt(rt_v3_dot(a, a)); }
-/* Unit vector along a; the zero vector stays zero. */
+/* Unit vector along a; the zero vector stays zero. A long vector is scaled down first:
+ * in Q32.32 its squared length would saturate beyond 46341 (double takes the same path,
+ * which no sensible scene reaches). */
 static inline rt_vec3 rt_v3_normalize(rt_vec3 a)
 {
+    rt_real m = rt_max(rt_max(rt_abs(a.x), rt_abs(a.y)), rt_abs(a.z));
+    if (m > RT_C(32768.0)) a = rt_v3_scale(a, rt_div(RT_ONE, m));
     rt_real len = rt_v3_length(a);
     return len > RT_ZERO ? rt_v3_scale(a, rt_div(RT_ONE, len)) : a;
 }

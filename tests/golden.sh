@@ -17,6 +17,8 @@ fail=0 count=0 bad=0
 while read -r scene opts; do
   case $scene in ''|'#'*) continue ;; esac
   count=$((count + 1))
+  if [ "$name" = fixed ]; then opts=${opts//@fixed-small/--width 128 --height 128}; else opts=${opts//@fixed-small/}; fi
+  opts=$(echo $opts)
   path=${scene/#corpus\//$corpus/}
   [ "$path" = "$scene" ] && path=$here/../$scene
   # shellcheck disable=SC2086
