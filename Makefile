@@ -111,3 +111,4 @@ clean:
 # Optional fragments: fuzzers (fuzz/fuzz.mk) and benchmarks (bench/bench.mk).
 -include fuzz/fuzz.mk
 -include bench/bench.mk
+-include tests/valgrind.mk

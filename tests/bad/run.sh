@@ -85,7 +85,11 @@ run_case() {
     sed 's/^/        stderr: /' "$err" | head -5
     return 1
   fi
-  echo "pass  $name: $(head -c 160 "$err")"
+  local memcheck=""
+  if [ $valgrind = 1 ]; then
+    memcheck=" [memcheck: $(sed -n 's/.*total heap usage: //p' "$tmp/$name.valgrind"), 0 errors, 0 lost]"
+  fi
+  echo "pass  $name: $(head -c 160 "$err")$memcheck"
 }
 
 trim() { local s=$1; s=${s#"${s%%[![:space:]]*}"}; echo "${s%"${s##*[![:space:]]}"}"; }
