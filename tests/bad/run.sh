@@ -7,7 +7,8 @@
 #   tests/bad/run.sh [--valgrind] [RTK]    RTK defaults to build/rtk
 # --valgrind runs rtk under memcheck and also wants 0 errors and 0 bytes lost.
 # Cases that need a file to be unreadable run as nobody when this runs as root (root
-# reads anything), or are skipped with the reason when setpriv is missing.
+# reads anything), or are skipped with the reason when setpriv is missing or nobody
+# may not run RTK.
 # Ends with "bad-inputs: N passed, M failed"; exits 1 when M > 0.
 set -euo pipefail
 
@@ -58,6 +59,10 @@ run_case() {
     fi
     chown -R nobody: "$work"
     prefix=(setpriv --reuid=nobody --regid="$(id -gn nobody)" --clear-groups)
+    if ! "${prefix[@]}" test -x "$rtk"; then
+      echo "skip  $name: running as root, and nobody may not run $rtk"
+      return 2
+    fi
   fi
   (cd "$work" && find . | sort) >"$tmp/$name.before"
   local argv=()
