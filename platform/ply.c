@@ -1,6 +1,7 @@
 /* PLY reader: file loading, header parsing, and the final mesh clean-up. The
  * element data itself is read by ply_body.c. */
 #include "ply_reader.h"
+#include "ply_weld.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -324,6 +325,7 @@ bool rt_ply_read(const char *path, rt_ply_mesh *out, char *err, size_t err_size)
     ply_reader r = {.path = path, .err = err, .err_size = err_size, .data = data, .size = size, .mesh = out};
     bool ok = parse_header(&r) && allocate_mesh(&r) && ply_read_body(&r);
     free(data);
+    if (ok && !rt_ply_weld(out)) ok = fail_file(path, err, err_size, "out of memory joining identical vertices");
     if (!ok) {
         rt_ply_free(out);
         return false;

@@ -116,8 +116,9 @@ Test(mesh, sculpt_gets_smooth_normals)
                                                    rt_v3_sub(m.positions[i[2]], m.positions[i[0]])));
         for (int k = 0; k < 3; k++) flat += rt_to_double(rt_v3_dot(face, n[i[k]])) > 1 - 1e-9;
     }
-    /* Every face has its own three vertices, but they share positions: one normal per position. */
-    cr_expect_lt(groups, m.vertex_count / 3, "%u distinct positions", groups);
+    /* The file gives every face its own three vertices; joined, each position is one vertex. */
+    cr_expect_eq(groups, m.vertex_count, "%u distinct positions for %u vertices", groups, m.vertex_count);
+    cr_expect_lt(m.vertex_count, m.triangle_count, "%u vertices for %u faces", m.vertex_count, m.triangle_count);
     cr_expect_lt(flat, m.vertex_count / 10, "%u of %u vertex normals are just the face normal", flat, m.vertex_count);
     free(order);
     rt_ply_free(&ply);
