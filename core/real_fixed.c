@@ -29,9 +29,61 @@ static int64_t shift_round(int64_t v, unsigned shift)
 /* The two's complement reading of u, without implementation-defined conversion. */
 static int64_t to_signed(uint64_t u) { return u <= INT64_MAX ? (int64_t)u : -(int64_t)~u - 1; }
 
-/* round(n * 2^shift / d), halves up, or UINT64_MAX when that is 2^63 or more; d > 0.
- * Restoring division one bit at a time, so 32-bit targets need no libgcc helper. */
-static uint64_t div_round(uint64_t n, unsigned shift, uint64_t d)
+/* Three ways to the same quotient: one x86-64 divq; on aarch64 two 64-bit hardware divisions;
+ * elsewhere (i686, arm: 64-bit division would be a libgcc call) one bit at a time.
+ * tests/test_real_fixed.c checks them against the exact quotient (-DRT_FIXED_PORTABLE forces
+ * the last one on any host; the aarch64 one was checked the same way under qemu-aarch64). */
+#if defined(__x86_64__) && !defined(RT_FIXED_PORTABLE)
+/* hi:lo / d for hi < d (otherwise divq faults). */
+static uint64_t udiv128(uint64_t hi, uint64_t lo, uint64_t d, uint64_t *rem)
+{
+    uint64_t q;
+    __asm__("divq %4" : "=a"(q), "=d"(*rem) : "a"(lo), "d"(hi), "rm"(d));
+    return q;
+}
+#elif defined(__aarch64__) && !defined(RT_FIXED_PORTABLE)
+/* hi:lo / d for hi < d, from two 64-by-32-bit quotient digits (Knuth's algorithm D with
+ * base 2^32, as in Hacker's Delight divlu): hardware 64-bit division, no libgcc helper. */
+static uint64_t udiv128(uint64_t hi, uint64_t lo, uint64_t d, uint64_t *rem)
+{
+    const uint64_t base = UINT64_C(1) << 32;
+    int s = __builtin_clzll(d);
+    d <<= s; /* normalised: the top digit of d is at least base / 2, so each estimate is at most 2 over */
+    uint64_t d1 = d >> 32, d0 = (uint32_t)d;
+    uint64_t n32 = s ? hi << s | lo >> (64 - s) : hi, n10 = lo << s;
+    uint64_t n1 = n10 >> 32, n0 = (uint32_t)n10;
+    uint64_t q1 = n32 / d1, rhat = n32 - q1 * d1;
+    while (q1 >= base || q1 * d0 > (rhat << 32 | n1)) {
+        q1--;
+        rhat += d1;
+        if (rhat >= base) break;
+    }
+    uint64_t n21 = (n32 << 32 | n1) - q1 * d; /* the partial remainder, below d: wraps to it exactly */
+    uint64_t q0 = n21 / d1;
+    rhat = n21 - q0 * d1;
+    while (q0 >= base || q0 * d0 > (rhat << 32 | n0)) {
+        q0--;
+        rhat += d1;
+        if (rhat >= base) break;
+    }
+    *rem = ((n21 << 32 | n0) - q0 * d) >> s;
+    return q1 << 32 | q0;
+}
+#endif
+
+#if (defined(__x86_64__) || defined(__aarch64__)) && !defined(RT_FIXED_PORTABLE)
+uint64_t rt_fx_div_round(uint64_t n, unsigned shift, uint64_t d)
+{
+    uint64_t hi = n >> (64 - shift), r;
+    if (hi >= d) return UINT64_MAX; /* the quotient needs more than 64 bits */
+    uint64_t q = udiv128(hi, n << shift, d, &r);
+    if (q >> 63) return UINT64_MAX;
+    if (r >= d - r) q++;
+    return q >> 63 ? UINT64_MAX : q;
+}
+#else
+/* Restoring division one bit at a time, so 32-bit targets need no libgcc helper. */
+uint64_t rt_fx_div_round(uint64_t n, unsigned shift, uint64_t d)
 {
     if (n == 0) return 0;
     uint64_t q = 0, r = 0;
@@ -48,29 +100,48 @@ static uint64_t div_round(uint64_t n, unsigned shift, uint64_t d)
     if (r >= d - r) q++;
     return q >> 63 ? UINT64_MAX : q;
 }
+#endif
 
 rt_real rt_div(rt_real a, rt_real b)
 {
     if (b == 0) return a == 0 ? RT_ZERO : rt_fx_signed(UINT64_MAX, a < 0);
-    return rt_fx_signed(div_round(rt_fx_mag(a), 32, rt_fx_mag(b)), (a < 0) != (b < 0));
+    return rt_fx_signed(rt_fx_div_round(rt_fx_mag(a), 32, rt_fx_mag(b)), (a < 0) != (b < 0));
 }
 
-/* Digit-by-digit square root of a * 2^32 (48 bit pairs), then rounded: the root s is
- * rounded up exactly when a * 2^32 - s^2 > s. */
+/* round(2^14 * 2 / (sqrt(i / 16) + sqrt((i + 1) / 16))), i = 4..15: 1/sqrt(x) on each
+ * sixteenth of [1/4, 1) to within 2^-5, the seed of the Newton iteration in rt_sqrt. */
+static const uint16_t rsqrt_seed[12] = {30942, 27974, 25724, 23944, 22488, 21270,
+                                        20231, 19330, 18540, 17840, 17213, 16648};
+
+/* True when s^2 > hi:lo. */
+static bool square_above(uint64_t s, uint64_t hi, uint64_t lo)
+{
+    uint64_t sq_lo, sq_hi = rt_fx_umul128(s, s, &sq_lo);
+    return sq_hi > hi || (sq_hi == hi && sq_lo > lo);
+}
+
+/* The root s of n = a * 2^32 from multiplications only: x = a 4^k scaled into [1/4, 1),
+ * four Newton steps y <- y (3 - x y^2) / 2 towards 1/sqrt(x) (Q61, 2^-5 -> about 2^-58),
+ * then s ~ x y / 2^k, which lands within 1 of floor(sqrt(n)) and is corrected exactly.
+ * It is rounded up exactly when n - s^2 > s. */
 rt_real rt_sqrt(rt_real a)
 {
     if (a <= 0) return RT_ZERO;
-    uint64_t n = (uint64_t)a, root = 0, rem = 0;
-    for (int i = 47; i >= 0; i--) {
-        rem = rem << 2 | (i >= 16 ? n >> (2 * i - 32) & 3 : 0);
-        uint64_t trial = root << 2 | 1;
-        root <<= 1;
-        if (rem >= trial) {
-            rem -= trial;
-            root |= 1;
-        }
+    int k = __builtin_clzll((uint64_t)a) / 2;
+    uint64_t x = (uint64_t)a << 2 * k, y = (uint64_t)rsqrt_seed[(x >> 60) - 4] << 47, lo;
+    for (int i = 0; i < 4; i++) {
+        uint64_t hi = rt_fx_umul128(y, y, &lo);
+        uint64_t xyy = rt_fx_umul128(x, hi << 3 | lo >> 61, &lo); /* x y^2 in Q61 */
+        hi = rt_fx_umul128(y, (UINT64_C(3) << 61) - xyy, &lo);
+        y = hi << 2 | lo >> 62;
     }
-    return (rt_real)(rem > root ? root + 1 : root);
+    uint64_t n_hi = (uint64_t)a >> 32, n_lo = (uint64_t)a << 32;
+    uint64_t s = rt_fx_umul128(x, y, &lo) >> (13 + k); /* x y in Q125, times 2^(48 - k) */
+    while (square_above(s, n_hi, n_lo)) s--;
+    while (!square_above(s + 1, n_hi, n_lo)) s++;
+    uint64_t sq_lo;
+    rt_fx_umul128(s, s, &sq_lo);
+    return (rt_real)(n_lo - sq_lo > s ? s + 1 : s); /* n - s^2 <= 2s fits the low word */
 }
 
 /* ---- sin, cos, tan ---------------------------------------------------------- */
@@ -161,7 +232,7 @@ rt_real rt_tan(rt_real x)
     int64_t num = q & 1 ? -c : s, den = q & 1 ? s : c; /* tan = s/c, or -c/s in odd quadrants */
     bool neg = ((num < 0) != (den < 0)) != (x < 0);
     if (den == 0) return rt_fx_signed(UINT64_MAX, neg);
-    return rt_fx_signed(div_round(rt_fx_mag(num), 32, rt_fx_mag(den)), neg);
+    return rt_fx_signed(rt_fx_div_round(rt_fx_mag(num), 32, rt_fx_mag(den)), neg);
 }
 
 /* ---- exp, log, pow ---------------------------------------------------------- */
@@ -228,7 +299,7 @@ static int64_t log_q58(uint64_t ux)
         e++;
     }
     bool neg = m < c;
-    int64_t s = rt_fx_signed(div_round(neg ? c - m : m - c, 62, m + c), neg); /* m + c < 2^64 */
+    int64_t s = rt_fx_signed(rt_fx_div_round(neg ? c - m : m - c, 62, m + c), neg); /* m + c < 2^64 */
     int64_t half_log = mulq(s, horner(atanh_coef, 12, mulq(s, s, 62)), 62); /* atanh s */
     return e * LN2_Q58 + shift_round(half_log, 3); /* 2 atanh s in Q58 */
 }

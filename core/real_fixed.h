@@ -78,6 +78,11 @@ static inline rt_real rt_mul(rt_real a, rt_real b)
     return rt_fx_signed(rt_fx_umulshift(rt_fx_mag(a), rt_fx_mag(b), 32), (a < 0) != (b < 0));
 }
 
+/* round(n * 2^shift / d) for 1 <= shift <= 63 and d > 0, halves up, or UINT64_MAX when that
+ * is 2^63 or more. One divq on x86-64, two 64-bit divisions on aarch64, bit-serial elsewhere
+ * (no libgcc helper on 32-bit targets); the same bits every way. */
+uint64_t rt_fx_div_round(uint64_t n, unsigned shift, uint64_t d);
+
 /* Rounded to nearest; x / 0 saturates to +-RT_REAL_MAX by the sign of x, and 0 / 0 = 0. */
 rt_real rt_div(rt_real a, rt_real b);
 

@@ -176,11 +176,47 @@ Test(real_fixed, div_rounds_to_nearest_and_saturates)
     cr_assert_eq(rt_div(RT_REAL_MAX, RT_REAL_MAX), RT_ONE);
 }
 
+#ifdef __SIZEOF_INT128__
+/* The specification of rt_fx_div_round: round(n 2^shift / d), halves up, UINT64_MAX from 2^63. */
+static uint64_t div_round_ref(uint64_t n, unsigned shift, uint64_t d)
+{
+    unsigned __int128 q = ((unsigned __int128)n << shift) / d, r = ((unsigned __int128)n << shift) % d;
+    if (2 * r >= d) q++;
+    return q >> 63 ? UINT64_MAX : (uint64_t)q;
+}
+#endif
+
+/* The division kernel against the exact quotient (the divq path on x86-64, the bit-serial
+ * one in a -DRT_FIXED_PORTABLE or 32-bit build), on operands of every length: small divisors
+ * (frequent ties), quotients near 2^64 and the 2^63 rail, divisors from 2^63, every shift. */
+Test(real_fixed, div_round_matches_exact_quotient)
+{
+#ifdef __SIZEOF_INT128__
+    lcg g = {9};
+    for (int i = 0; i < 3000000; i++) {
+        uint64_t n = lcg_next(&g) >> (lcg_next(&g) % 64), d = lcg_next(&g) >> (lcg_next(&g) % 64);
+        unsigned shift = i % 4 == 0 ? 62 : i % 4 == 1 ? 32 : 1 + (unsigned)(lcg_next(&g) % 63);
+        if (i % 8 == 7) d = (n >> (64 - shift)) + (lcg_next(&g) % 5); /* quotient near 2^64 */
+        if (i % 8 == 6) d = 1 + lcg_next(&g) % 64;
+        if (i % 16 == 5) d |= UINT64_C(1) << 63;
+        if (d == 0) continue;
+        cr_assert_eq(rt_fx_div_round(n, shift, d), div_round_ref(n, shift, d), "%llu << %u / %llu",
+                     (unsigned long long)n, shift, (unsigned long long)d);
+    }
+#endif
+    cr_assert_eq(rt_fx_div_round(3, 1, 4), 2);                      /* 1.5 rounds up */
+    cr_assert_eq(rt_fx_div_round(UINT64_C(1) << 62, 1, 1), UINT64_MAX); /* 2^63 */
+    cr_assert_eq(rt_fx_div_round(UINT64_MAX, 62, UINT64_MAX), UINT64_C(1) << 62);
+    cr_assert_eq(rt_fx_div_round(0, 32, 7), 0);
+}
+
 Test(real_fixed, sqrt_is_correctly_rounded)
 {
     lcg g = {3};
-    for (int i = 0; i < 200000; i++) {
-        rt_real a = gen_positive(&g), r = rt_sqrt(a);
+    for (int i = 0; i < 1000000; i++) {
+        /* every length, then the smallest inputs and those at the rail */
+        rt_real a = i < 600000 ? gen_positive(&g) : i < 800000 ? i - 599999 : RT_REAL_MAX - (i - 800000);
+        rt_real r = rt_sqrt(a);
 #ifdef __SIZEOF_INT128__
         /* r correctly rounded <=> (2r - 1)^2 <= 4 a 2^32 < (2r + 1)^2 (no ties: the left side is odd) */
         unsigned __int128 n4 = (unsigned __int128)a << 34, lo = 2 * (unsigned __int128)r - 1, hi = lo + 2;
