@@ -11,7 +11,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 reals=${*:-double fixed}
-size=${SIZE:-96}
+size=${SIZE:-64}
 corpus=${RTK_SHARED:-../shared}/cse457/assets/trace
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
