@@ -236,7 +236,57 @@ rt_status rt_bvh_build(rt_scene *scene, rt_arena *arena)
 
 /* ---- Queries ---- */
 
-static void consider(const rt_scene *scene, uint32_t prim, rt_ray_setup *rs, rt_scene_hit *best, bool *found)
+/* The slab test of rt_intersect_aabb with the per-axis branches decided once per ray:
+ * for a non-zero direction component the near plane is lo when it is positive and hi
+ * when negative (the products are monotonic in the plane, so this is the swap the
+ * general test makes), and without NaN the three axes can be clamped before the one
+ * comparison. Rays with a zero component, a non-finite reciprocal or origin keep the
+ * general test, whose zero-direction and NaN cases differ. */
+typedef struct {
+    rt_vec3 origin, inv;
+    rt_real t_min;
+    size_t near[3], far[3]; /* byte offsets of each axis' near and far plane in an rt_aabb */
+    bool general;
+    const rt_ray_setup *rs;
+} slab_ray;
+
+static slab_ray slab_prepare(const rt_ray_setup *rs)
+{
+    rt_vec3 d = rs->ray.direction, o = rs->ray.origin, inv = rs->inv_direction;
+    slab_ray r;
+    r.origin = o;
+    r.inv = inv;
+    r.t_min = rs->ray.t_min;
+    r.rs = rs;
+    for (int k = 0; k < 3; k++) {
+        size_t lo = offsetof(rt_aabb, lo) + (size_t)k * sizeof(rt_real), hi = lo + offsetof(rt_aabb, hi);
+        bool neg = rt_v3_get(d, k) < RT_ZERO;
+        r.near[k] = neg ? hi : lo;
+        r.far[k] = neg ? lo : hi;
+    }
+    r.general = d.x == RT_ZERO || d.y == RT_ZERO || d.z == RT_ZERO || !rt_is_finite(inv.x) || !rt_is_finite(inv.y) ||
+                !rt_is_finite(inv.z) || !rt_is_finite(o.x) || !rt_is_finite(o.y) || !rt_is_finite(o.z);
+    return r;
+}
+
+static inline rt_real plane(const rt_aabb *b, size_t offset) { return *(const rt_real *)((const char *)b + offset); }
+
+static inline bool slab_hit(const slab_ray *r, const rt_aabb *b, rt_real t_max, rt_real *t_enter)
+{
+    if (r->general) return rt_intersect_aabb(r->rs, b, t_max, t_enter);
+    rt_real x0 = rt_mul(rt_sub(plane(b, r->near[0]), r->origin.x), r->inv.x);
+    rt_real x1 = rt_mul(rt_sub(plane(b, r->far[0]), r->origin.x), r->inv.x);
+    rt_real y0 = rt_mul(rt_sub(plane(b, r->near[1]), r->origin.y), r->inv.y);
+    rt_real y1 = rt_mul(rt_sub(plane(b, r->far[1]), r->origin.y), r->inv.y);
+    rt_real z0 = rt_mul(rt_sub(plane(b, r->near[2]), r->origin.z), r->inv.z);
+    rt_real z1 = rt_mul(rt_sub(plane(b, r->far[2]), r->origin.z), r->inv.z);
+    rt_real t0 = rt_max(rt_max(rt_max(r->t_min, x0), y0), z0);
+    rt_real t1 = rt_min(rt_min(rt_min(t_max, x1), y1), z1);
+    *t_enter = t0;
+    return !(t0 > t1);
+}
+
+static void consider(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs, rt_scene_hit *best, bool *found)
 {
     rt_prim_hit h;
     if (!rt_prim_intersect(scene, prim, rs, &h)) return;
@@ -246,51 +296,58 @@ static void consider(const rt_scene *scene, uint32_t prim, rt_ray_setup *rs, rt_
     *found = true;
 }
 
-static bool nearest_brute(const rt_scene *scene, rt_ray_setup *rs, rt_scene_hit *out)
+static bool nearest_brute(const rt_scene *scene, const rt_ray_setup *rs, rt_scene_hit *out)
 {
     bool found = false;
     for (uint32_t p = 0; p < scene->prim_count; p++) consider(scene, p, rs, out, &found);
     return found;
 }
 
-static bool nearest_bvh(const rt_scene *scene, rt_ray_setup *rs, rt_scene_hit *out)
-{
-    const rt_bvh *bvh = &scene->bvh;
-    bool found = false;
-    uint32_t stack[RT_BVH_MAX_DEPTH + 2];
-    uint32_t top = 0;
+typedef struct {
+    uint32_t node;
     rt_real t_enter;
-    if (scene->prim_count == 0 || !rt_intersect_aabb(rs, &bvh->nodes[0].bounds, rs->ray.t_max, &t_enter)) return false;
-    stack[top++] = 0;
+} stack_entry;
+
+/* Boxes are tested against the best t itself (not below it), and a popped node is
+ * skipped only when it is entered beyond the best t, so ties to a lower reference survive. */
+static bool nearest_bvh(const rt_scene *scene, const rt_ray_setup *rs, rt_scene_hit *out)
+{
+    const rt_bvh_node *nodes = scene->bvh.nodes;
+    slab_ray sr = slab_prepare(rs);
+    bool found = false;
+    stack_entry stack[RT_BVH_MAX_DEPTH + 2];
+    uint32_t top = 0;
+    rt_real t_root;
+    if (scene->prim_count == 0 || !slab_hit(&sr, &nodes[0].bounds, rs->ray.t_max, &t_root)) return false;
+    stack[top++] = (stack_entry){0, t_root};
     while (top > 0) {
-        const rt_bvh_node *node = &bvh->nodes[stack[--top]];
-        if (node->count > 0) {
-            for (uint32_t i = node->first; i < node->first + node->count; i++)
-                consider(scene, bvh->prim_refs[i], rs, out, &found);
-            continue;
+        stack_entry e = stack[--top];
+        if (found && e.t_enter > out->hit.t) continue;
+        const rt_bvh_node *node = &nodes[e.node];
+        /* Descend into the nearer child directly; the farther one waits on the stack. */
+        while (node->count == 0) {
+            rt_real limit = found ? out->hit.t : rs->ray.t_max, ta, tb;
+            bool hit_a = slab_hit(&sr, &nodes[node->first].bounds, limit, &ta);
+            bool hit_b = slab_hit(&sr, &nodes[node->first + 1].bounds, limit, &tb);
+            if (hit_a && hit_b) {
+                bool a_first = ta <= tb;
+                stack[top++] = a_first ? (stack_entry){node->first + 1, tb} : (stack_entry){node->first, ta};
+                node = &nodes[a_first ? node->first : node->first + 1];
+            } else if (hit_a || hit_b) {
+                node = &nodes[hit_a ? node->first : node->first + 1];
+            } else {
+                node = NULL;
+                break;
+            }
         }
-        /* Boxes are tested against the best t itself (not below it) so ties survive. */
-        rt_real limit = found ? out->hit.t : rs->ray.t_max;
-        rt_real ta, tb;
-        bool hit_a = rt_intersect_aabb(rs, &bvh->nodes[node->first].bounds, limit, &ta);
-        bool hit_b = rt_intersect_aabb(rs, &bvh->nodes[node->first + 1].bounds, limit, &tb);
-        if (hit_a && hit_b) {
-            /* Visit the nearer child first: push it last. */
-            uint32_t near = ta <= tb ? node->first : node->first + 1;
-            stack[top++] = near == node->first ? node->first + 1 : node->first;
-            stack[top++] = near;
-        } else if (hit_a) {
-            stack[top++] = node->first;
-        } else if (hit_b) {
-            stack[top++] = node->first + 1;
-        }
+        if (!node) continue;
+        for (uint32_t i = node->first; i < node->first + node->count; i++)
+            consider(scene, scene->bvh.prim_refs[i], rs, out, &found);
     }
     return found;
 }
 
 bool rt_scene_nearest(const rt_scene *scene, const rt_ray_setup *rs, bool use_bvh, rt_scene_hit *out)
 {
-    /* The intersectors read t_max from the setup; keep the caller's copy unchanged. */
-    rt_ray_setup local = *rs;
-    return use_bvh ? nearest_bvh(scene, &local, out) : nearest_brute(scene, &local, out);
+    return use_bvh ? nearest_bvh(scene, rs, out) : nearest_brute(scene, rs, out);
 }

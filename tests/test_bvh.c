@@ -82,6 +82,36 @@ Test(bvh, nearest_hit_equals_brute_force)
     free(memory);
 }
 
+/* Directions with zero components take the general slab test (core/bvh.c); origins on
+ * a coarse lattice put them in the planes of the quadrics' boxes and on triangle edges. */
+Test(bvh, axis_aligned_rays_equal_brute_force)
+{
+    lcg_state = 99;
+    rt_scene s;
+    void *memory;
+    random_scene(&s, &memory, 1000, 30);
+    static const double dirs[][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1},
+                                     {0.6, 0.8, 0}, {0, -0.6, 0.8}, {-0.8, 0, -0.6}};
+    int hits = 0;
+    for (int i = 0; i < 20000; i++) {
+        const double *d = dirs[i % 9];
+        rt_vec3 o = rt_v3(rt_from_int((int)(next_unit() * 31) - 15), rt_from_double(next_range(-15, 15)),
+                          rt_from_int((int)(next_unit() * 31) - 15));
+        rt_ray r = {o, rt_v3(rt_from_double(d[0]), rt_from_double(d[1]), rt_from_double(d[2])), RT_HIT_EPSILON,
+                    RT_REAL_MAX};
+        rt_ray_setup rs = rt_ray_prepare(r);
+        rt_scene_hit a, b;
+        bool ha = rt_scene_nearest(&s, &rs, true, &a), hb = rt_scene_nearest(&s, &rs, false, &b);
+        cr_assert_eq(ha, hb, "ray %d: BVH %s, brute force %s", i, ha ? "hit" : "missed", hb ? "hit" : "missed");
+        if (!ha) continue;
+        hits++;
+        cr_assert_eq(a.prim, b.prim, "ray %d: primitive %u vs %u", i, a.prim, b.prim);
+        cr_assert(a.hit.t == b.hit.t);
+    }
+    cr_assert_gt(hits, 1000, "the test scene should be hit often (%d hits)", hits);
+    free(memory);
+}
+
 Test(bvh, every_reference_appears_once)
 {
     lcg_state = 7;
