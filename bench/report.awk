@@ -38,7 +38,7 @@ END {
                show(fe[i]), show(fd[i])
     if (skipped != "") printf "not rendered: %s\n", skipped
     printf "ratios divide the values as shown: for times (s) lower is better, for Mrays/s higher.\n"
-    printf "rtk shadow rays are nearest-hit queries with t_max = light distance (rtk has no any-hit query).\n"
+    printf "shadow rays are any-hit queries with t_max = light distance (rt_scene_any, rtcOccluded1).\n"
 
     # Issue 8's targets, for rtk double unless said otherwise.
     p = at["primary rays, 1 thread"]

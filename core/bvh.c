@@ -309,8 +309,9 @@ typedef struct {
 } stack_entry;
 
 /* Boxes are tested against the best t itself (not below it), and a popped node is
- * skipped only when it is entered beyond the best t, so ties to a lower reference survive. */
-static bool nearest_bvh(const rt_scene *scene, const rt_ray_setup *rs, rt_scene_hit *out)
+ * skipped only when it is entered beyond the best t, so ties to a lower reference survive.
+ * With `any`, the first hit found ends the search (rt_scene_any). */
+static bool nearest_bvh(const rt_scene *scene, const rt_ray_setup *rs, bool any, rt_scene_hit *out)
 {
     const rt_bvh_node *nodes = scene->bvh.nodes;
     slab_ray sr = slab_prepare(rs);
@@ -341,13 +342,25 @@ static bool nearest_bvh(const rt_scene *scene, const rt_ray_setup *rs, rt_scene_
             }
         }
         if (!node) continue;
-        for (uint32_t i = node->first; i < node->first + node->count; i++)
+        for (uint32_t i = node->first; i < node->first + node->count; i++) {
             consider(scene, scene->bvh.prim_refs[i], rs, out, &found);
+            if (any && found) return true;
+        }
     }
     return found;
 }
 
 bool rt_scene_nearest(const rt_scene *scene, const rt_ray_setup *rs, bool use_bvh, rt_scene_hit *out)
 {
-    return use_bvh ? nearest_bvh(scene, rs, out) : nearest_brute(scene, rs, out);
+    return use_bvh ? nearest_bvh(scene, rs, false, out) : nearest_brute(scene, rs, out);
+}
+
+bool rt_scene_any(const rt_scene *scene, const rt_ray_setup *rs, bool use_bvh)
+{
+    rt_scene_hit first;
+    if (use_bvh) return nearest_bvh(scene, rs, true, &first);
+    rt_prim_hit h;
+    for (uint32_t p = 0; p < scene->prim_count; p++)
+        if (rt_prim_intersect(scene, p, rs, &h)) return true;
+    return false;
 }

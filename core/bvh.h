@@ -25,5 +25,7 @@ bool rt_prim_intersect(const rt_scene *scene, uint32_t prim, const rt_ray_setup 
 
 /* Nearest hit in (t_min, t_max); use_bvh = false tests every primitive (for checking). */
 bool rt_scene_nearest(const rt_scene *scene, const rt_ray_setup *rs, bool use_bvh, rt_scene_hit *out);
+/* Whether any primitive is hit in (t_min, t_max): true exactly when rt_scene_nearest finds a hit. */
+bool rt_scene_any(const rt_scene *scene, const rt_ray_setup *rs, bool use_bvh);
 
 #endif

@@ -53,6 +53,12 @@ static rt_vec3 shadow_attenuation(const rt_tracer *tr, rt_vec3 point, rt_vec3 to
     rt_vec3 atten = rt_v3(RT_ONE, RT_ONE, RT_ONE);
     uint32_t mode = scene->camera.trace.shadows;
     if (mode == 0) return atten;
+    /* Opaque shadows need only whether anything blocks (any hit), unless the debugger
+     * records which hit did. */
+    if (mode == 1 && !tr->log) {
+        rt_ray_setup rs = rt_ray_prepare(rt_make_ray(point, to_light, distance));
+        return rt_scene_any(scene, &rs, tr->use_bvh) ? rt_v3(RT_ZERO, RT_ZERO, RT_ZERO) : atten;
+    }
     rt_vec3 origin = point;
     rt_real remaining = distance;
     /* Each crossing moves the origin forward by at least the hit epsilon; the bound

@@ -82,6 +82,31 @@ Test(bvh, nearest_hit_equals_brute_force)
     free(memory);
 }
 
+/* The any-hit query finds a hit exactly when the nearest-hit query does, with and without
+ * the BVH, for segments of every length (shadow rays end at the light). */
+Test(bvh, any_hit_agrees_with_nearest)
+{
+    lcg_state = 5;
+    rt_scene s;
+    void *memory;
+    random_scene(&s, &memory, 2000, 50);
+    int hits = 0, misses = 0;
+    for (int i = 0; i < 20000; i++) {
+        rt_vec3 o = rt_v3(next_range(-15, 15), next_range(-15, 15), next_range(-15, 15));
+        rt_vec3 d = rt_v3_normalize(rt_v3(next_range(-1, 1), next_range(-1, 1), next_range(-1, 1)));
+        rt_ray r = {o, d, RT_HIT_EPSILON, i % 4 == 0 ? RT_REAL_MAX : next_range(0.01, 20)};
+        if (i % 7 == 0) r.direction.y = 0; /* a zero component: the general slab test */
+        rt_ray_setup rs = rt_ray_prepare(r);
+        rt_scene_hit h;
+        bool want = rt_scene_nearest(&s, &rs, false, &h);
+        cr_assert_eq(rt_scene_any(&s, &rs, true), want, "ray %d: BVH any-hit differs", i);
+        cr_assert_eq(rt_scene_any(&s, &rs, false), want, "ray %d: brute-force any-hit differs", i);
+        want ? hits++ : misses++;
+    }
+    cr_assert(hits > 2000 && misses > 2000, "%d hits, %d misses", hits, misses);
+    free(memory);
+}
+
 /* Directions with zero components take the general slab test (core/bvh.c); origins on
  * a coarse lattice put them in the planes of the quadrics' boxes and on triangle edges. */
 Test(bvh, axis_aligned_rays_equal_brute_force)
