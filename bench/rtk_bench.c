@@ -105,21 +105,18 @@ static bool time_build(const rt_scene *scene, uint32_t repeats)
     return true;
 }
 
-/* Bytes the scene's mesh and BVH arrays take, per triangle. The node array is
- * allocated for the worst case (2n - 1 nodes); "used" counts only the nodes built. */
+/* Bytes the scene's mesh and BVH arrays take, per triangle (the node array is allocated
+ * at the size built). */
 static void print_memory(const rt_scene *s)
 {
     double tris = s->triangle_count ? (double)s->triangle_count : 1.0;
     double mesh = (double)s->vertex_count * (2 * sizeof(rt_vec3) + sizeof(rt_vec2)) +
                   (double)s->triangle_count * sizeof(rt_triangle);
-    double refs = (double)s->prim_count * sizeof(uint32_t);
-    double nodes_alloc = (double)(s->prim_count ? 2 * (size_t)s->prim_count - 1 : 1) * sizeof(rt_bvh_node);
-    double nodes_used = (double)s->bvh.node_count * sizeof(rt_bvh_node);
+    double bvh = (double)s->bvh.node_count * sizeof(rt_bvh_node) + (double)s->prim_count * sizeof(uint32_t);
     printf("vertices %u\ntriangles %u\nbvh_nodes %u\nbvh_depth %u\n", s->vertex_count, s->triangle_count,
            s->bvh.node_count, s->bvh.depth);
-    printf("mesh_bytes_per_tri %.1f\nbvh_bytes_per_tri %.1f\nbytes_per_tri %.1f\nbytes_per_tri_used %.1f\n",
-           mesh / tris, (nodes_alloc + refs) / tris, (mesh + nodes_alloc + refs) / tris,
-           (mesh + nodes_used + refs) / tris);
+    printf("mesh_bytes_per_tri %.1f\nbvh_bytes_per_tri %.1f\nbytes_per_tri %.1f\n", mesh / tris, bvh / tris,
+           (mesh + bvh) / tris);
 }
 
 static int usage(void)

@@ -89,8 +89,7 @@ for q in primary shadow; do
         "$(speedup "$(val $E ${q}_mrays_all)" "$(val $E ${q}_mrays_1)")"
     row "$q hits" count "$(val $D ${q}_hits)" "$(val $F ${q}_hits)" "$(val $E ${q}_hits)"
 done
-row "BVH + mesh memory (allocated)" B/tri "$(val $D bytes_per_tri)" "$(val $F bytes_per_tri)" "$(val $E bytes_per_tri)"
-row "BVH + mesh memory (nodes used)" B/tri "$(val $D bytes_per_tri_used)" "$(val $F bytes_per_tri_used)" ""
+row "BVH + mesh memory" B/tri "$(val $D bytes_per_tri)" "$(val $F bytes_per_tri)" "$(val $E bytes_per_tri)"
 
 # Sets t to the wall time of `rtk render --quiet` (load, build, render, write a PPM) for
 # one kernel, or "failed", or "" when that kernel is not built. Extra arguments go to

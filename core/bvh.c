@@ -87,20 +87,20 @@ bool rt_prim_intersect(const rt_scene *scene, uint32_t prim, const rt_ray_setup 
 
 /* ---- Build ---- */
 
+/* A primitive being sorted into the tree: its padded bounds travel with it, so each
+ * node's passes read its references in order instead of gathering them. */
 typedef struct {
-    rt_aabb *bounds;
-    rt_vec3 *centroids;
-    uint32_t *refs;
-} build_input;
+    rt_aabb bounds;
+    uint32_t prim;
+} build_ref;
 
 typedef struct {
     uint32_t node, first, count, depth;
+    rt_aabb bounds, centroids; /* of the references, from the parent's bins and partition */
 } build_task;
 
-static rt_real centroid_axis(const build_input *in, uint32_t ref, int axis)
-{
-    return rt_v3_get(in->centroids[ref], axis);
-}
+/* The box centre, as the binning sees the primitive. */
+static rt_vec3 centroid_of(const build_ref *r) { return rt_v3_scale(rt_v3_add(r->bounds.lo, r->bounds.hi), RT_C(0.5)); }
 
 static int bin_of(rt_real c, rt_real lo, rt_real scale)
 {
@@ -108,97 +108,126 @@ static int bin_of(rt_real c, rt_real lo, rt_real scale)
     return b < 0 ? 0 : b >= BIN_COUNT ? BIN_COUNT - 1 : (int)b;
 }
 
-/* Finds the cheapest binned split of refs[first..first+count); false if a leaf is cheaper. */
-static bool choose_split(const build_input *in, uint32_t first, uint32_t count, rt_aabb node_bounds,
-                         int *axis_out, rt_real *pos_out)
+typedef struct {
+    int axis, bin;          /* refs in bins <= bin go left */
+    rt_real lo, scale;      /* the axis' binning */
+    rt_aabb left, right;    /* the children's bounds, unions of their bins */
+} split;
+
+/* Finds the cheapest binned split of a task's references, binning all three axes in one
+ * pass; false if a leaf is cheaper. */
+static bool choose_split(const build_ref *refs, const build_task *t, split *out)
 {
-    rt_aabb cb = aabb_empty();
-    for (uint32_t i = first; i < first + count; i++) cb = aabb_add_point(cb, in->centroids[in->refs[i]]);
-    rt_real best_cost = rt_mul(rt_from_int(count), aabb_half_area(node_bounds)); /* leaf cost */
+    rt_aabb box[3][BIN_COUNT];
+    uint32_t n_in[3][BIN_COUNT];
+    rt_real lo[3], scale[3];
+    bool active[3];
+    for (int axis = 0; axis < 3; axis++) {
+        lo[axis] = rt_v3_get(t->centroids.lo, axis);
+        rt_real hi = rt_v3_get(t->centroids.hi, axis);
+        active[axis] = hi > lo[axis];
+        /* A flat axis bins everything into bin 0 (scale 0) and is never priced. */
+        scale[axis] = active[axis] ? rt_div(rt_from_int(BIN_COUNT), rt_sub(hi, lo[axis])) : RT_ZERO;
+        for (int b = 0; b < BIN_COUNT; b++) {
+            box[axis][b] = aabb_empty();
+            n_in[axis][b] = 0;
+        }
+    }
+    for (uint32_t i = t->first; i < t->first + t->count; i++) {
+        rt_vec3 c = centroid_of(&refs[i]);
+        int bx = bin_of(c.x, lo[0], scale[0]), by = bin_of(c.y, lo[1], scale[1]), bz = bin_of(c.z, lo[2], scale[2]);
+        box[0][bx] = aabb_union(box[0][bx], refs[i].bounds);
+        box[1][by] = aabb_union(box[1][by], refs[i].bounds);
+        box[2][bz] = aabb_union(box[2][bz], refs[i].bounds);
+        n_in[0][bx]++;
+        n_in[1][by]++;
+        n_in[2][bz]++;
+    }
+    rt_real best_cost = rt_mul(rt_from_int(t->count), aabb_half_area(t->bounds)); /* leaf cost */
     bool found = false;
     for (int axis = 0; axis < 3; axis++) {
-        rt_real lo = rt_v3_get(cb.lo, axis), hi = rt_v3_get(cb.hi, axis);
-        if (!(hi > lo)) continue;
-        rt_real scale = rt_div(rt_from_int(BIN_COUNT), rt_sub(hi, lo));
-        rt_aabb bin_box[BIN_COUNT];
-        uint32_t bin_n[BIN_COUNT];
-        for (int b = 0; b < BIN_COUNT; b++) { bin_box[b] = aabb_empty(); bin_n[b] = 0; }
-        for (uint32_t i = first; i < first + count; i++) {
-            uint32_t ref = in->refs[i];
-            int b = bin_of(centroid_axis(in, ref, axis), lo, scale);
-            bin_box[b] = aabb_union(bin_box[b], in->bounds[ref]);
-            bin_n[b]++;
-        }
+        if (!active[axis]) continue;
         /* Sweep from the right to get suffix areas, then from the left to price each plane. */
         rt_real right_area[BIN_COUNT];
         uint32_t right_n[BIN_COUNT];
         rt_aabb acc = aabb_empty();
         uint32_t n = 0;
         for (int b = BIN_COUNT - 1; b > 0; b--) {
-            acc = aabb_union(acc, bin_box[b]);
-            n += bin_n[b];
+            acc = aabb_union(acc, box[axis][b]);
+            n += n_in[axis][b];
             right_area[b] = aabb_half_area(acc);
             right_n[b] = n;
         }
         acc = aabb_empty();
         n = 0;
         for (int b = 0; b < BIN_COUNT - 1; b++) {
-            acc = aabb_union(acc, bin_box[b]);
-            n += bin_n[b];
+            acc = aabb_union(acc, box[axis][b]);
+            n += n_in[axis][b];
             if (n == 0 || right_n[b + 1] == 0) continue;
             rt_real cost = rt_add(rt_mul(rt_from_int(n), aabb_half_area(acc)),
                                   rt_mul(rt_from_int(right_n[b + 1]), right_area[b + 1]));
             if (cost < best_cost) {
                 best_cost = cost;
                 found = true;
-                *axis_out = axis;
-                /* Split by bin index (recomputed in partition), encoded as a position. */
-                *pos_out = rt_from_int(b);
+                out->axis = axis;
+                out->bin = b;
             }
         }
     }
-    return found;
+    if (!found) return false;
+    out->lo = lo[out->axis];
+    out->scale = scale[out->axis];
+    out->left = out->right = aabb_empty();
+    for (int b = 0; b < BIN_COUNT; b++) {
+        rt_aabb *side = b <= out->bin ? &out->left : &out->right;
+        *side = aabb_union(*side, box[out->axis][b]);
+    }
+    return true;
 }
 
-/* Moves refs whose centroid falls in bins <= split_bin to the front; returns their count. */
-static uint32_t partition(build_input *in, uint32_t first, uint32_t count, int axis, int split_bin)
+/* Moves the references of bins <= s->bin to the front and returns their count; the
+ * children's centroid bounds are gathered on the way. */
+static uint32_t partition(build_ref *refs, uint32_t first, uint32_t count, const split *s, rt_aabb *left_c,
+                          rt_aabb *right_c)
 {
-    rt_aabb cb = aabb_empty();
-    for (uint32_t i = first; i < first + count; i++) cb = aabb_add_point(cb, in->centroids[in->refs[i]]);
-    rt_real lo = rt_v3_get(cb.lo, axis), hi = rt_v3_get(cb.hi, axis);
-    rt_real scale = rt_div(rt_from_int(BIN_COUNT), rt_sub(hi, lo));
+    *left_c = *right_c = aabb_empty();
     uint32_t i = first, j = first + count;
     while (i < j) {
-        if (bin_of(centroid_axis(in, in->refs[i], axis), lo, scale) <= split_bin) {
+        rt_vec3 c = centroid_of(&refs[i]);
+        if (bin_of(rt_v3_get(c, s->axis), s->lo, s->scale) <= s->bin) {
+            *left_c = aabb_add_point(*left_c, c);
             i++;
         } else {
+            *right_c = aabb_add_point(*right_c, c);
             j--;
-            uint32_t s = in->refs[i];
-            in->refs[i] = in->refs[j];
-            in->refs[j] = s;
+            build_ref swap = refs[i];
+            refs[i] = refs[j];
+            refs[j] = swap;
         }
     }
     return i - first;
 }
 
+/* Nodes are made in scratch for the worst case (2n - 1) at the arena's mark, then the
+ * arena is reset and only the nodes made are kept there, in place. */
 rt_status rt_bvh_build(rt_scene *scene, rt_arena *arena)
 {
     uint32_t n = scene->prim_count;
     rt_bvh *bvh = &scene->bvh;
-    bvh->nodes = RT_NEW_ARRAY(arena, rt_bvh_node, n > 0 ? 2 * (size_t)n - 1 : 1);
     bvh->prim_refs = RT_NEW_ARRAY(arena, uint32_t, n > 0 ? n : 1);
-    if (!bvh->nodes || !bvh->prim_refs) return RT_ERR_NOMEM;
+    if (!bvh->prim_refs) return RT_ERR_NOMEM;
     size_t mark = rt_arena_mark(arena);
-    build_input in;
-    in.bounds = RT_NEW_ARRAY(arena, rt_aabb, n);
-    in.centroids = RT_NEW_ARRAY(arena, rt_vec3, n);
+    /* Every node and reference is written before it is read: no zeroing. */
+    bvh->nodes = rt_arena_alloc(arena, (n > 0 ? 2 * (size_t)n - 1 : 1) * sizeof(rt_bvh_node));
+    build_ref *refs = n > 0 ? rt_arena_alloc(arena, (size_t)n * sizeof(build_ref)) : NULL;
     build_task *stack = RT_NEW_ARRAY(arena, build_task, RT_BVH_MAX_DEPTH + 2);
-    if (n > 0 && (!in.bounds || !in.centroids || !stack)) return RT_ERR_NOMEM;
-    in.refs = bvh->prim_refs;
+    if (!bvh->nodes || (n > 0 && !refs) || !stack) return RT_ERR_NOMEM;
+    build_task root = {0, 0, n, 1, aabb_empty(), aabb_empty()};
     for (uint32_t i = 0; i < n; i++) {
-        in.bounds[i] = rt_prim_bounds(scene, i);
-        in.centroids[i] = rt_v3_scale(rt_v3_add(in.bounds[i].lo, in.bounds[i].hi), RT_C(0.5));
-        in.refs[i] = i;
+        refs[i].bounds = rt_prim_bounds(scene, i);
+        refs[i].prim = i;
+        root.bounds = aabb_union(root.bounds, refs[i].bounds);
+        root.centroids = aabb_add_point(root.centroids, centroid_of(&refs[i]));
     }
     bvh->node_count = 1;
     bvh->depth = 1;
@@ -206,31 +235,29 @@ rt_status rt_bvh_build(rt_scene *scene, rt_arena *arena)
     bvh->nodes[0].first = 0;
     bvh->nodes[0].count = 0;
     uint32_t top = 0;
-    if (n > 0) stack[top++] = (build_task){0, 0, n, 1};
+    if (n > 0) stack[top++] = root;
     while (top > 0) {
         build_task task = stack[--top];
         rt_bvh_node *node = &bvh->nodes[task.node];
-        rt_aabb bounds = aabb_empty();
-        for (uint32_t i = task.first; i < task.first + task.count; i++) bounds = aabb_union(bounds, in.bounds[in.refs[i]]);
-        node->bounds = bounds;
+        node->bounds = task.bounds;
         node->first = task.first;
         node->count = task.count;
         if (task.depth > bvh->depth) bvh->depth = task.depth;
-        int axis = 0;
-        rt_real split = RT_ZERO;
-        if (task.count <= LEAF_MAX || task.depth >= RT_BVH_MAX_DEPTH ||
-            !choose_split(&in, task.first, task.count, bounds, &axis, &split))
-            continue;
-        uint32_t left_n = partition(&in, task.first, task.count, axis, rt_floor_int(split));
+        split s;
+        if (task.count <= LEAF_MAX || task.depth >= RT_BVH_MAX_DEPTH || !choose_split(refs, &task, &s)) continue;
+        rt_aabb left_c, right_c;
+        uint32_t left_n = partition(refs, task.first, task.count, &s, &left_c, &right_c);
         uint32_t left = bvh->node_count;
         bvh->node_count += 2;
         node->first = left;
         node->count = 0;
         /* Push right first so the left subtree is built next (depth-first, bounded stack). */
-        stack[top++] = (build_task){left + 1, task.first + left_n, task.count - left_n, task.depth + 1};
-        stack[top++] = (build_task){left, task.first, left_n, task.depth + 1};
+        stack[top++] = (build_task){left + 1, task.first + left_n, task.count - left_n, task.depth + 1, s.right, right_c};
+        stack[top++] = (build_task){left, task.first, left_n, task.depth + 1, s.left, left_c};
     }
+    for (uint32_t i = 0; i < n; i++) bvh->prim_refs[i] = refs[i].prim;
     rt_arena_reset(arena, mark);
+    bvh->nodes = rt_arena_alloc(arena, (size_t)bvh->node_count * sizeof(rt_bvh_node)); /* the same address */
     return RT_OK;
 }
 
