@@ -17,6 +17,7 @@ OUT=build/bench
 MESH=scenes/bench/dense_mesh.yaml
 ROWS=$OUT/rows.tsv
 mkdir -p "$OUT"
+rm -f "$OUT"/rtk-*.txt "$OUT/embree.txt" # a kernel not run this time must not report old figures
 
 note() { printf '%s\n' "$*" >&2; }
 # The value of `key` in a harness's "key value" output file, or empty.
