@@ -82,12 +82,13 @@ demo: deps
 	@echo "wrote demo.png"
 
 # The unit and reference tests on the double build, then the golden render hashes
-# of both builds (the fixed build also runs its own math suite).
+# of both builds (the fixed build also runs its own math and precision suites).
 check: deps
 	$(MAKE) build/rtk build/rtk-tests
 	$(MAKE) RT_REAL=fixed build-fixed/rtk build-fixed/rtk-tests
 	build/rtk-tests --jobs 2
 	build-fixed/rtk-tests --jobs 2 --filter 'real_fixed/*'
+	build-fixed/rtk-tests --jobs 2 --filter 'precision/*'
 	tests/golden.sh check build/rtk double
 	tests/golden.sh check build-fixed/rtk fixed
 	tests/bad/run.sh build/rtk

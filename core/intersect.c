@@ -28,15 +28,18 @@ rt_ray_setup rt_ray_prepare(rt_ray ray)
     return rs;
 }
 
-/* Smallest root of a t^2 + 2 h t + c in (t_min, t_max), given its quarter discriminant
- * disc = h^2 - a c computed without cancellation (see closest_approach_disc), and the
- * roots from the cancellation-free pair q / a, c / q. */
-static bool nearest_root(rt_real a, rt_real h, rt_real c, rt_real disc, rt_real t_min, rt_real t_max, rt_real *t)
+/* Smallest root of a t^2 + 2 h t + c in (t_min, t_max), given w2 = r^2 - |f|^2 with f the
+ * point of closest approach (see closest_approach_w2), so the quarter discriminant
+ * h^2 - a c = a w2 without cancellation, and the roots from the cancellation-free pair
+ * q / a, c / q. */
+static bool nearest_root(rt_real a, rt_real h, rt_real c, rt_real w2, rt_real t_min, rt_real t_max, rt_real *t)
 {
-    /* NaN must miss too: rt_sqrt would turn it into 0 and report the point of closest
-     * approach as a hit. */
-    if (a == RT_ZERO || !(disc >= RT_ZERO)) return false;
-    rt_real root = rt_sqrt(disc);
+    /* NaN must miss too: rt_sqrt_mul would turn it into 0 and report the point of
+     * closest approach as a hit. */
+    if (!(a > RT_ZERO) || !(w2 >= RT_ZERO)) return false;
+    /* One rounding of a * w2, not two: in Q32.32 a small product rounded to 2^-32 before
+     * its root would blur a grazing hit by far more than the rest of the solve. */
+    rt_real root = rt_sqrt_mul(a, w2);
     rt_real q = rt_neg(h < RT_ZERO ? rt_sub(h, root) : rt_add(h, root));
     if (q == RT_ZERO) return false;
     rt_real t0 = rt_div(q, a), t1 = rt_div(c, q);
@@ -50,12 +53,12 @@ static bool nearest_root(rt_real a, rt_real h, rt_real c, rt_real disc, rt_real 
     return false;
 }
 
-/* h^2 - a c for |o + t d|^2 = r^2, as a (r^2 - |f|^2) with f = o - (h/a) d the point of
- * closest approach: h^2 and a c are huge and nearly equal for a far origin, f is not. */
-static rt_real closest_approach_disc(rt_vec3 o, rt_vec3 d, rt_real a, rt_real h, rt_real r2)
+/* r^2 - |f|^2 with f = o - (h/a) d the point of closest approach of |o + t d|^2 = r^2:
+ * h^2 and a c are huge and nearly equal for a far origin, f is not. */
+static rt_real closest_approach_w2(rt_vec3 o, rt_vec3 d, rt_real a, rt_real h, rt_real r2)
 {
     rt_vec3 f = rt_v3_sub(o, rt_v3_scale(d, rt_div(h, a)));
-    return rt_mul(a, rt_sub(r2, rt_v3_dot(f, f)));
+    return rt_sub(r2, rt_v3_dot(f, f));
 }
 
 bool rt_intersect_sphere(rt_vec3 o, rt_vec3 d, rt_real t_min, rt_real t_max, rt_prim_hit *hit)
@@ -65,7 +68,7 @@ bool rt_intersect_sphere(rt_vec3 o, rt_vec3 d, rt_real t_min, rt_real t_max, rt_
     rt_real h = rt_v3_dot(o, d);
     rt_real c = rt_sub(rt_v3_dot(o, o), RT_C(0.25));
     rt_real t;
-    if (!nearest_root(a, h, c, closest_approach_disc(o, d, a, h, RT_C(0.25)), t_min, t_max, &t)) return false;
+    if (!nearest_root(a, h, c, closest_approach_w2(o, d, a, h, RT_C(0.25)), t_min, t_max, &t)) return false;
     hit->t = t;
     hit->b1 = hit->b2 = RT_ZERO;
     hit->part = RT_PART_SURFACE;
@@ -82,9 +85,9 @@ bool rt_intersect_cylinder(rt_vec3 o, rt_vec3 d, rt_real t_min, rt_real t_max, r
     rt_real a = rt_v3_dot(d_xz, d_xz);
     rt_real h = rt_v3_dot(o_xz, d_xz);
     rt_real c = rt_sub(rt_v3_dot(o_xz, o_xz), RT_C(0.25));
-    rt_real disc = a == RT_ZERO ? rt_neg(RT_ONE) : closest_approach_disc(o_xz, d_xz, a, h, RT_C(0.25));
+    rt_real w2 = a == RT_ZERO ? rt_neg(RT_ONE) : closest_approach_w2(o_xz, d_xz, a, h, RT_C(0.25));
     rt_real lo = t_min, t;
-    for (int root = 0; root < 2 && nearest_root(a, h, c, disc, lo, best, &t); root++) {
+    for (int root = 0; root < 2 && nearest_root(a, h, c, w2, lo, best, &t); root++) {
         rt_real y = rt_add(o.y, rt_mul(t, d.y));
         if (y >= RT_C(-0.5) && y <= RT_C(0.5)) {
             best = t;
@@ -140,9 +143,7 @@ bool rt_intersect_triangle(const rt_ray_setup *rs, rt_vec3 a, rt_vec3 b, rt_vec3
     rt_real extent_x = rt_add(rt_add(rt_abs(ax), rt_abs(bx)), rt_abs(cx));
     rt_real extent_y = rt_add(rt_add(rt_abs(ay), rt_abs(by)), rt_abs(cy));
     if (rt_abs(det) <= rt_mul(rt_mul(extent_x, extent_y), RT_C(1e-12))) return false;
-    rt_real scaled_t = rt_add(rt_add(rt_mul(u, rt_mul(rs->sz, az)), rt_mul(v, rt_mul(rs->sz, bz))),
-                              rt_mul(w, rt_mul(rs->sz, cz)));
-    rt_real t = rt_div(scaled_t, det);
+    rt_real t = rt_dot3_div(u, rt_mul(rs->sz, az), v, rt_mul(rs->sz, bz), w, rt_mul(rs->sz, cz), det);
     if (!(t > rs->ray.t_min && t < rs->ray.t_max)) return false;
     hit->t = t;
     hit->b1 = rt_div(v, det);

@@ -19,9 +19,16 @@ static inline rt_real rt_add(rt_real a, rt_real b) { return a + b; }
 static inline rt_real rt_sub(rt_real a, rt_real b) { return a - b; }
 static inline rt_real rt_mul(rt_real a, rt_real b) { return a * b; }
 static inline rt_real rt_div(rt_real a, rt_real b) { return a / b; }
+/* (a0 b0 + a1 b1 + a2 b2) / d, rounded step by step left to right. */
+static inline rt_real rt_dot3_div(rt_real a0, rt_real b0, rt_real a1, rt_real b1, rt_real a2, rt_real b2, rt_real d)
+{
+    return (a0 * b0 + a1 * b1 + a2 * b2) / d;
+}
 static inline rt_real rt_neg(rt_real a) { return -a; }
 static inline rt_real rt_from_int(int64_t i) { return (rt_real)i; }
 static inline rt_real rt_sqrt(rt_real a) { return a > 0.0 ? __builtin_sqrt(a) : 0.0; }
+/* sqrt(a * b); 0 when the product is not positive. */
+static inline rt_real rt_sqrt_mul(rt_real a, rt_real b) { return rt_sqrt(a * b); }
 
 /* Largest integer <= a, saturated to the int32 range. */
 static inline int32_t rt_floor_int(rt_real a)

@@ -72,24 +72,24 @@ static uint64_t udiv128(uint64_t hi, uint64_t lo, uint64_t d, uint64_t *rem)
 #endif
 
 #if (defined(__x86_64__) || defined(__aarch64__)) && !defined(RT_FIXED_PORTABLE)
-uint64_t rt_fx_div_round(uint64_t n, unsigned shift, uint64_t d)
+uint64_t rt_fx_div128_round(uint64_t hi, uint64_t lo, uint64_t d)
 {
-    uint64_t hi = n >> (64 - shift), r;
+    uint64_t r;
     if (hi >= d) return UINT64_MAX; /* the quotient needs more than 64 bits */
-    uint64_t q = udiv128(hi, n << shift, d, &r);
+    uint64_t q = udiv128(hi, lo, d, &r);
     if (q >> 63) return UINT64_MAX;
     if (r >= d - r) q++;
     return q >> 63 ? UINT64_MAX : q;
 }
 #else
 /* Restoring division one bit at a time, so 32-bit targets need no libgcc helper. */
-uint64_t rt_fx_div_round(uint64_t n, unsigned shift, uint64_t d)
+uint64_t rt_fx_div128_round(uint64_t hi, uint64_t lo, uint64_t d)
 {
-    if (n == 0) return 0;
+    if (hi == 0 && lo == 0) return 0;
     uint64_t q = 0, r = 0;
-    for (int i = 63 - __builtin_clzll(n) + (int)shift; i >= 0; i--) {
+    for (int i = hi ? 127 - __builtin_clzll(hi) : 63 - __builtin_clzll(lo); i >= 0; i--) {
         uint64_t carry = r >> 63; /* r < d < 2^64, so r * 2 + bit may need a 65th bit */
-        r = r << 1 | (i >= (int)shift ? n >> (i - (int)shift) & 1 : 0);
+        r = r << 1 | (i >= 64 ? hi >> (i - 64) : lo >> i) & 1;
         if (q >> 62) return UINT64_MAX;
         q <<= 1;
         if (carry || r >= d) {
@@ -102,10 +102,38 @@ uint64_t rt_fx_div_round(uint64_t n, unsigned shift, uint64_t d)
 }
 #endif
 
+uint64_t rt_fx_div_round(uint64_t n, unsigned shift, uint64_t d)
+{
+    return rt_fx_div128_round(n >> (64 - shift), n << shift, d);
+}
+
 rt_real rt_div(rt_real a, rt_real b)
 {
     if (b == 0) return a == 0 ? RT_ZERO : rt_fx_signed(UINT64_MAX, a < 0);
     return rt_fx_signed(rt_fx_div_round(rt_fx_mag(a), 32, rt_fx_mag(b)), (a < 0) != (b < 0));
+}
+
+/* Adds the exact product a b (Q64.64) to the positive or the negative sum. */
+static void add_product(rt_real a, rt_real b, uint64_t sum[2][2])
+{
+    uint64_t lo, hi = rt_fx_umul128(rt_fx_mag(a), rt_fx_mag(b), &lo);
+    uint64_t *s = sum[(a < 0) != (b < 0)];
+    s[1] += lo;
+    s[0] += hi + (s[1] < lo);
+}
+
+/* Each sum holds at most three products below 2^126, so neither wraps. */
+rt_real rt_dot3_div(rt_real a0, rt_real b0, rt_real a1, rt_real b1, rt_real a2, rt_real b2, rt_real d)
+{
+    uint64_t sum[2][2] = {{0, 0}, {0, 0}}; /* {hi, lo} of the positive and the negative products */
+    add_product(a0, b0, sum);
+    add_product(a1, b1, sum);
+    add_product(a2, b2, sum);
+    bool negative = sum[1][0] > sum[0][0] || (sum[1][0] == sum[0][0] && sum[1][1] > sum[0][1]);
+    const uint64_t *big = sum[negative], *small = sum[!negative];
+    uint64_t lo = big[1] - small[1], hi = big[0] - small[0] - (big[1] < small[1]);
+    if (d == 0) return hi == 0 && lo == 0 ? RT_ZERO : rt_fx_signed(UINT64_MAX, negative);
+    return rt_fx_signed(rt_fx_div128_round(hi, lo, rt_fx_mag(d)), negative != (d < 0));
 }
 
 /* round(2^14 * 2 / (sqrt(i / 16) + sqrt((i + 1) / 16))), i = 4..15: 1/sqrt(x) on each
@@ -120,28 +148,43 @@ static bool square_above(uint64_t s, uint64_t hi, uint64_t lo)
     return sq_hi > hi || (sq_hi == hi && sq_lo > lo);
 }
 
-/* The root s of n = a * 2^32 from multiplications only: x = a 4^k scaled into [1/4, 1),
- * four Newton steps y <- y (3 - x y^2) / 2 towards 1/sqrt(x) (Q61, 2^-5 -> about 2^-58),
- * then s ~ x y / 2^k, which lands within 1 of floor(sqrt(n)) and is corrected exactly.
- * It is rounded up exactly when n - s^2 > s. */
+/* round(sqrt(n)) for n = hi:lo < 2^126, from multiplications only: x = n 4^k scaled into
+ * [1/4, 1) as 64 bits, four Newton steps y <- y (3 - x y^2) / 2 towards 1/sqrt(x) (Q61,
+ * 2^-5 -> about 2^-58), then s ~ x y / 2^k, which lands within a few units of floor(sqrt(n))
+ * and is corrected exactly. It is rounded up exactly when n - s^2 > s. */
+static uint64_t root128(uint64_t hi, uint64_t lo)
+{
+    int k = (hi ? __builtin_clzll(hi) : 64 + __builtin_clzll(lo)) / 2;
+    uint64_t x = k == 0 ? hi : k < 32 ? hi << 2 * k | lo >> (64 - 2 * k) : lo << (2 * k - 64);
+    uint64_t y = (uint64_t)rsqrt_seed[(x >> 60) - 4] << 47, plo;
+    for (int i = 0; i < 4; i++) {
+        uint64_t phi = rt_fx_umul128(y, y, &plo);
+        uint64_t xyy = rt_fx_umul128(x, phi << 3 | plo >> 61, &plo); /* x y^2 in Q61 */
+        phi = rt_fx_umul128(y, (UINT64_C(3) << 61) - xyy, &plo);
+        y = phi << 2 | plo >> 62;
+    }
+    uint64_t phi = rt_fx_umul128(x, y, &plo); /* x y in Q125: sqrt(n) is it over 2^(61 + k) */
+    uint64_t s = k >= 3 ? phi >> (k - 3) : phi << (3 - k) | plo >> (61 + k);
+    while (square_above(s, hi, lo)) s--;
+    while (!square_above(s + 1, hi, lo)) s++;
+    uint64_t sq_lo;
+    rt_fx_umul128(s, s, &sq_lo);
+    return lo - sq_lo > s ? s + 1 : s; /* n - s^2 <= 2s fits the low word */
+}
+
+/* The root of a is that of n = a * 2^32. */
 rt_real rt_sqrt(rt_real a)
 {
     if (a <= 0) return RT_ZERO;
-    int k = __builtin_clzll((uint64_t)a) / 2;
-    uint64_t x = (uint64_t)a << 2 * k, y = (uint64_t)rsqrt_seed[(x >> 60) - 4] << 47, lo;
-    for (int i = 0; i < 4; i++) {
-        uint64_t hi = rt_fx_umul128(y, y, &lo);
-        uint64_t xyy = rt_fx_umul128(x, hi << 3 | lo >> 61, &lo); /* x y^2 in Q61 */
-        hi = rt_fx_umul128(y, (UINT64_C(3) << 61) - xyy, &lo);
-        y = hi << 2 | lo >> 62;
-    }
-    uint64_t n_hi = (uint64_t)a >> 32, n_lo = (uint64_t)a << 32;
-    uint64_t s = rt_fx_umul128(x, y, &lo) >> (13 + k); /* x y in Q125, times 2^(48 - k) */
-    while (square_above(s, n_hi, n_lo)) s--;
-    while (!square_above(s + 1, n_hi, n_lo)) s++;
-    uint64_t sq_lo;
-    rt_fx_umul128(s, s, &sq_lo);
-    return (rt_real)(n_lo - sq_lo > s ? s + 1 : s); /* n - s^2 <= 2s fits the low word */
+    return (rt_real)root128((uint64_t)a >> 32, (uint64_t)a << 32);
+}
+
+/* a * b as an exact Q64.64 number n, whose root is sqrt(a b) in Q32.32. */
+rt_real rt_sqrt_mul(rt_real a, rt_real b)
+{
+    if (a <= 0 || b <= 0) return RT_ZERO;
+    uint64_t lo, hi = rt_fx_umul128((uint64_t)a, (uint64_t)b, &lo);
+    return (rt_real)root128(hi, lo);
 }
 
 /* ---- sin, cos, tan ---------------------------------------------------------- */

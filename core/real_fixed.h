@@ -82,9 +82,14 @@ static inline rt_real rt_mul(rt_real a, rt_real b)
  * is 2^63 or more. One divq on x86-64, two 64-bit divisions on aarch64, bit-serial elsewhere
  * (no libgcc helper on 32-bit targets); the same bits every way. */
 uint64_t rt_fx_div_round(uint64_t n, unsigned shift, uint64_t d);
+/* round(hi:lo / d) for d > 0, halves up, or UINT64_MAX when that is 2^63 or more. */
+uint64_t rt_fx_div128_round(uint64_t hi, uint64_t lo, uint64_t d);
 
 /* Rounded to nearest; x / 0 saturates to +-RT_REAL_MAX by the sign of x, and 0 / 0 = 0. */
 rt_real rt_div(rt_real a, rt_real b);
+/* (a0 b0 + a1 b1 + a2 b2) / d rounded once from the exact 128-bit sum, which may pass the
+ * Q32.32 range when the quotient does not (a triangle's t far from the origin). */
+rt_real rt_dot3_div(rt_real a0, rt_real b0, rt_real a1, rt_real b1, rt_real a2, rt_real b2, rt_real d);
 
 static inline rt_real rt_neg(rt_real a) { return a == INT64_MIN ? RT_REAL_MAX : -a; }
 
@@ -97,6 +102,10 @@ static inline rt_real rt_from_int(int64_t i)
 
 /* Correctly rounded square root; 0 for a <= 0 (as in the double build). */
 rt_real rt_sqrt(rt_real a);
+/* sqrt(a * b) correctly rounded from the exact 128-bit product, so a small product keeps
+ * its significant bits (rt_sqrt(rt_mul(a, b)) would round it to 2^-32 first); 0 when a or
+ * b is not positive. */
+rt_real rt_sqrt_mul(rt_real a, rt_real b);
 
 /* Largest integer <= a (the high word); always within the int32 range. */
 static inline int32_t rt_floor_int(rt_real a)

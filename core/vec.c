@@ -24,26 +24,37 @@ static rt_real cofactor(const rt_mat3 *a, int r0, int r1, int c0, int c1)
     return rt_sub(rt_mul(a->m[r0][c0], a->m[r1][c1]), rt_mul(a->m[r0][c1], a->m[r1][c0]));
 }
 
+/* Each column j is scaled by 16^k[j] into [1/2, 8) first, and row j of the inverse scaled
+ * back by the same factor (A = B D^-1, so A^-1 = D B^-1). In Q32.32 a large scale would
+ * otherwise leave 1 / det only a few significant bits (1 / 939^3 is about five lsb), and a
+ * small or uneven one would lose det itself; in double the scaling is exact. */
 bool rt_mat3_inverse(const rt_mat3 *a, rt_mat3 *out)
 {
+    int k[3];
+    rt_mat3 b;
+    for (int j = 0; j < 3; j++) {
+        rt_real m = rt_max(rt_max(rt_abs(a->m[0][j]), rt_abs(a->m[1][j])), rt_abs(a->m[2][j]));
+        k[j] = rt_pow16_exponent(m, RT_C(8.0));
+        for (int i = 0; i < 3; i++) b.m[i][j] = rt_scale_pow16(a->m[i][j], k[j]);
+    }
     /* Adjugate over determinant; cofactor(i, j) uses the rows and columns other than i and j. */
     rt_mat3 adj;
-    adj.m[0][0] = cofactor(a, 1, 2, 1, 2);
-    adj.m[0][1] = rt_neg(cofactor(a, 0, 2, 1, 2));
-    adj.m[0][2] = cofactor(a, 0, 1, 1, 2);
-    adj.m[1][0] = rt_neg(cofactor(a, 1, 2, 0, 2));
-    adj.m[1][1] = cofactor(a, 0, 2, 0, 2);
-    adj.m[1][2] = rt_neg(cofactor(a, 0, 1, 0, 2));
-    adj.m[2][0] = cofactor(a, 1, 2, 0, 1);
-    adj.m[2][1] = rt_neg(cofactor(a, 0, 2, 0, 1));
-    adj.m[2][2] = cofactor(a, 0, 1, 0, 1);
-    rt_real det = rt_add(rt_add(rt_mul(a->m[0][0], adj.m[0][0]), rt_mul(a->m[0][1], adj.m[1][0])),
-                         rt_mul(a->m[0][2], adj.m[2][0]));
+    adj.m[0][0] = cofactor(&b, 1, 2, 1, 2);
+    adj.m[0][1] = rt_neg(cofactor(&b, 0, 2, 1, 2));
+    adj.m[0][2] = cofactor(&b, 0, 1, 1, 2);
+    adj.m[1][0] = rt_neg(cofactor(&b, 1, 2, 0, 2));
+    adj.m[1][1] = cofactor(&b, 0, 2, 0, 2);
+    adj.m[1][2] = rt_neg(cofactor(&b, 0, 1, 0, 2));
+    adj.m[2][0] = cofactor(&b, 1, 2, 0, 1);
+    adj.m[2][1] = rt_neg(cofactor(&b, 0, 2, 0, 1));
+    adj.m[2][2] = cofactor(&b, 0, 1, 0, 1);
+    rt_real det = rt_add(rt_add(rt_mul(b.m[0][0], adj.m[0][0]), rt_mul(b.m[0][1], adj.m[1][0])),
+                         rt_mul(b.m[0][2], adj.m[2][0]));
     if (det == RT_ZERO || !rt_is_finite(det)) return false;
     rt_real inv_det = rt_div(RT_ONE, det);
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) {
-            rt_real v = rt_mul(adj.m[i][j], inv_det);
+            rt_real v = rt_scale_pow16(rt_mul(adj.m[i][j], inv_det), k[i]);
             if (!rt_is_finite(v)) return false;
             out->m[i][j] = v;
         }

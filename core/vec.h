@@ -28,16 +28,44 @@ static inline rt_vec3 rt_v3_cross(rt_vec3 a, rt_vec3 b)
                  rt_sub(rt_mul(a.z, b.x), rt_mul(a.x, b.z)),
                  rt_sub(rt_mul(a.x, b.y), rt_mul(a.y, b.x)));
 }
-static inline rt_real rt_v3_length(rt_vec3 a) { return rt_sqrt(rt_v3_dot(a, a)); }
-/* Unit vector along a; the zero vector stays zero. A long vector is scaled down first:
- * in Q32.32 its squared length would saturate beyond 46341 (double takes the same path,
- * which no sensible scene reaches). */
+/* The k for which m 16^k lies in [1/2, top), or 0 for a zero, infinite or NaN m
+ * (m - m is 0 for any other value). Scaling by powers of two is exact in double, so
+ * results computed on scaled values and scaled back equal the unscaled ones there; in
+ * Q32.32 it keeps squares from saturating and small values' significant bits. */
+static inline int rt_pow16_exponent(rt_real m, rt_real top)
+{
+    int k = 0;
+    for (; m >= top && rt_sub(m, m) == RT_ZERO; m = rt_mul(m, RT_C(0.0625))) k--;
+    for (; m > RT_ZERO && m < RT_C(0.5); m = rt_mul(m, RT_C(16.0))) k++;
+    return k;
+}
+/* x 16^k, one factor of 16 (or 1/16) at a time. */
+static inline rt_real rt_scale_pow16(rt_real x, int k)
+{
+    for (; k > 0; k--) x = rt_mul(x, RT_C(16.0));
+    for (; k < 0; k++) x = rt_mul(x, RT_C(0.0625));
+    return x;
+}
+/* a 16^k with its largest component in [1/2, 8): in Q32.32 its squared length keeps at
+ * least 30 significant bits and the reciprocal of its length (above 1/14) at least 28. */
+static inline rt_vec3 rt_v3_rescale(rt_vec3 a, int *k)
+{
+    *k = rt_pow16_exponent(rt_max(rt_max(rt_abs(a.x), rt_abs(a.y)), rt_abs(a.z)), RT_C(8.0));
+    return rt_v3(rt_scale_pow16(a.x, *k), rt_scale_pow16(a.y, *k), rt_scale_pow16(a.z, *k));
+}
+static inline rt_real rt_v3_length(rt_vec3 a)
+{
+    int k;
+    rt_vec3 b = rt_v3_rescale(a, &k);
+    return rt_scale_pow16(rt_sqrt(rt_v3_dot(b, b)), -k);
+}
+/* Unit vector along a; the zero vector stays zero. */
 static inline rt_vec3 rt_v3_normalize(rt_vec3 a)
 {
-    rt_real m = rt_max(rt_max(rt_abs(a.x), rt_abs(a.y)), rt_abs(a.z));
-    if (m > RT_C(32768.0)) a = rt_v3_scale(a, rt_div(RT_ONE, m));
-    rt_real len = rt_v3_length(a);
-    return len > RT_ZERO ? rt_v3_scale(a, rt_div(RT_ONE, len)) : a;
+    int k;
+    rt_vec3 b = rt_v3_rescale(a, &k);
+    rt_real len = rt_sqrt(rt_v3_dot(b, b));
+    return len > RT_ZERO ? rt_v3_scale(b, rt_div(RT_ONE, len)) : a;
 }
 static inline rt_real rt_v3_get(rt_vec3 a, int axis) { return axis == 0 ? a.x : axis == 1 ? a.y : a.z; }
 static inline bool rt_v3_is_zero(rt_vec3 a) { return a.x == RT_ZERO && a.y == RT_ZERO && a.z == RT_ZERO; }

@@ -14,11 +14,9 @@ FUZZ_PARSERS := fuzz_yaml fuzz_ply fuzz_png
 FUZZ_ALL := $(patsubst fuzz/%.c,%,$(wildcard fuzz/fuzz_*.c))
 FUZZ_CORE_TARGETS := $(filter-out $(FUZZ_PARSERS),$(FUZZ_ALL))
 FUZZ_HELPERS := $(filter-out fuzz/fuzz_%.c,$(wildcard fuzz/*.c))
-# Backends built, and backends `make fuzz` runs. The fixed targets build, but their
-# invariants still fail on known Q32.32 issues (docs/robustness.md), so they run
-# on request: make fuzz FUZZ_RUN_VARIANTS="double fixed".
+# Backends built, and backends `make fuzz` runs (FUZZ_RUN_VARIANTS=double for one).
 FUZZ_VARIANTS ?= double $(if $(wildcard core/real_fixed.h),fixed)
-FUZZ_RUN_VARIANTS ?= double
+FUZZ_RUN_VARIANTS ?= $(FUZZ_VARIANTS)
 
 # The top-level flags without the backend switch; each variant adds its own.
 FUZZ_CORE_CFLAGS := $(filter-out -DRT_REAL_FIXED,$(CORE_CFLAGS)) $(FUZZ_SAN) -fsanitize=fuzzer-no-link

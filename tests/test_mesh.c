@@ -335,7 +335,7 @@ Test(mesh, cube_matches_the_format)
             rt_vec3 p = c.positions[i], n = face_normal[f];
             cr_expect(c.normals[i].x == n.x && c.normals[i].y == n.y && c.normals[i].z == n.z, "vertex %u", i);
             cr_expect_eq(rt_v3_dot(p, n), 0.5, "vertex %u is not on its face", i);
-            cr_expect(fabs(p.x) == 0.5 && fabs(p.y) == 0.5 && fabs(p.z) == 0.5, "vertex %u", i);
+            cr_expect(rt_abs(p.x) == RT_C(0.5) && rt_abs(p.y) == RT_C(0.5) && rt_abs(p.z) == RT_C(0.5), "vertex %u", i);
             /* u follows x (y for left/right), v follows y (z for left/right, -z for bottom/top). */
             double u = f < 2 || f >= 4 ? p.x + 0.5 : p.y + 0.5;
             double v = f < 2 ? p.y + 0.5 : f < 4 ? p.z + 0.5 : 0.5 - p.z;
@@ -366,7 +366,7 @@ Test(mesh, square_is_the_unit_plane)
     double area = 0;
     for (uint32_t v = 0; v < 4; v++) {
         rt_vec3 p = s.positions[v];
-        cr_expect(fabs(p.x) == 0.5 && fabs(p.y) == 0.5 && p.z == 0, "vertex %u", v);
+        cr_expect(rt_abs(p.x) == RT_C(0.5) && rt_abs(p.y) == RT_C(0.5) && p.z == RT_ZERO, "vertex %u", v);
         cr_expect_eq(s.normals[v].x, 0.0);
         cr_expect_eq(s.normals[v].y, 0.0);
         cr_expect_eq(s.normals[v].z, 1.0);

@@ -210,6 +210,36 @@ Test(real_fixed, div_round_matches_exact_quotient)
     cr_assert_eq(rt_fx_div_round(0, 32, 7), 0);
 }
 
+/* The triangle's t: one rounding of an exact sum of products that may itself pass the
+ * Q32.32 range, against signed 128-bit arithmetic (operands below 2^62 keep it exact). */
+Test(real_fixed, dot3_div_rounds_the_exact_sum_once)
+{
+#ifdef __SIZEOF_INT128__
+    lcg g = {11};
+    for (int i = 0; i < 1000000; i++) {
+        rt_real v[7];
+        for (int k = 0; k < 7; k++) v[k] = lcg_any(&g) / 2;
+        if (i % 3 == 0) v[6] = (v[6] >> 40) | 1;  /* small divisors: large quotients, the rail */
+        if (i % 5 == 0) v[5] = -v[1] / 3;           /* cancellation */
+        if (v[6] == 0) continue;
+        __int128 sum = (__int128)v[0] * v[1] + (__int128)v[2] * v[3] + (__int128)v[4] * v[5];
+        unsigned __int128 mag = sum < 0 ? -(unsigned __int128)sum : (unsigned __int128)sum;
+        unsigned __int128 d = v[6] < 0 ? -(unsigned __int128)v[6] : (unsigned __int128)v[6];
+        unsigned __int128 q = mag / d + (2 * (mag % d) >= d);
+        rt_real want = q >= (unsigned __int128)INT64_MAX ? RT_REAL_MAX : (rt_real)q;
+        if ((sum < 0) != (v[6] < 0)) want = -want;
+        cr_assert_eq(rt_dot3_div(v[0], v[1], v[2], v[3], v[4], v[5], v[6]), want, "case %d", i);
+    }
+#endif
+    /* 2^20 * 2^20 * 3 = 3 * 2^40 passes the range; divided by 2^20 it is 3 * 2^20 */
+    rt_real m = RT_C(1048576.0);
+    cr_assert_eq(rt_dot3_div(m, m, m, m, m, m, m), RT_C(3145728.0));
+    cr_assert_eq(rt_dot3_div(m, m, -m, m, RT_ONE, RT_C(0.5), RT_C(2.0)), RT_C(0.25));
+    cr_assert_eq(rt_dot3_div(RT_ONE, RT_ONE, 0, 0, 0, 0, 0), RT_REAL_MAX);
+    cr_assert_eq(rt_dot3_div(-RT_ONE, RT_ONE, 0, 0, 0, 0, 0), -RT_REAL_MAX);
+    cr_assert_eq(rt_dot3_div(0, RT_ONE, 0, 0, 0, 0, 0), 0);
+}
+
 Test(real_fixed, sqrt_is_correctly_rounded)
 {
     lcg g = {3};
@@ -231,6 +261,30 @@ Test(real_fixed, sqrt_is_correctly_rounded)
     cr_assert_eq(rt_sqrt(-RT_ONE), 0);
     cr_assert_eq(rt_sqrt(1), 65536); /* sqrt(2^-32) = 2^-16 */
     cr_assert_eq(rt_sqrt(RT_REAL_MAX), INT64_C(199032864766430)); /* round(sqrt(2^63 - 1) * 2^16) */
+}
+
+Test(real_fixed, sqrt_mul_is_correctly_rounded_from_the_exact_product)
+{
+    lcg g = {5};
+    for (int i = 0; i < 1000000; i++) {
+        rt_real a = i % 4 == 0 ? 1 + (rt_real)(lcg_next(&g) % 4096) : gen_positive(&g), b = gen_positive(&g);
+        rt_real r = rt_sqrt_mul(a, b);
+        cr_assert_eq(rt_sqrt_mul(b, a), r);
+#ifdef __SIZEOF_INT128__
+        /* r = round(sqrt(n)) for the integer n = a b <=> r^2 - r < n <= r^2 + r */
+        unsigned __int128 n = (unsigned __int128)a * (unsigned __int128)b, r2 = (unsigned __int128)r * r;
+        cr_assert(r2 - r < n && n <= r2 + r, "sqrt_mul of raw %lld, %lld gave %lld", (long long)a, (long long)b,
+                  (long long)r);
+#else
+        cr_assert(lsb_error(r, sqrtl(real_of(a) * real_of(b))) <= ROUNDED + 0x1p-20L);
+#endif
+    }
+    cr_assert_eq(rt_sqrt_mul(RT_C(2.0), RT_C(8.0)), RT_C(4.0));
+    cr_assert_eq(rt_sqrt_mul(1, 1), 1); /* sqrt(2^-64) = 2^-32, which rt_sqrt(rt_mul(1, 1)) loses */
+    cr_assert_eq(rt_sqrt_mul(RT_C(3.0), RT_ONE), rt_sqrt(RT_C(3.0)));
+    cr_assert_eq(rt_sqrt_mul(RT_REAL_MAX, RT_REAL_MAX), RT_REAL_MAX);
+    cr_assert_eq(rt_sqrt_mul(-RT_ONE, -RT_ONE), 0);
+    cr_assert_eq(rt_sqrt_mul(0, RT_ONE), 0);
 }
 
 Test(real_fixed, floor_int_and_unit_to_byte)

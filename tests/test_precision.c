@@ -1,0 +1,103 @@
+/* Precision cases the fixed-point fuzzers found (fuzz/, docs/robustness.md). They run in
+ * both builds, with tolerances Q32.32 must meet as well as double. */
+#include <criterion/criterion.h>
+#include <math.h>
+
+#include "intersect.h"
+#include "vec.h"
+
+/* The build's unit roundoff, for bounds that scale with it. */
+#ifdef RT_REAL_FIXED
+#define ULP 0x1p-32L
+#else
+#define ULP 0x1p-52L
+#endif
+
+static long double len_of(rt_vec3 v)
+{
+    long double x = rt_to_double(v.x), y = rt_to_double(v.y), z = rt_to_double(v.z);
+    return sqrtl(x * x + y * y + z * z);
+}
+
+static rt_vec3 v3d(double x, double y, double z) { return rt_v3(rt_from_double(x), rt_from_double(y), rt_from_double(z)); }
+
+/* fuzz_triangle: a sliver's cross product is about 1e-6 long, and its squared length kept
+ * a few significant bits in Q32.32, so its "unit" normal came out 6e-5 too long; the
+ * cross product (27556, -27556, -27556) of a large triangle squared to beyond 2^31 and
+ * came out 3% too long. Vectors are now scaled by powers of two first. */
+Test(precision, vectors_of_any_length_normalise_to_unit_length)
+{
+    for (int e = -24; e <= 14; e++) {
+        double s = ldexp(1.0, e);
+        rt_vec3 v = v3d(0.3 * s, -0.1 * s, 0.5 * s);
+        long double len = len_of(rt_v3_normalize(v));
+        cr_assert(fabsl(len - 1) <= 1e-8L, "2^%d: length %.17Lg", e, len);
+        if (e >= -12) {
+            long double want = len_of(v), got = rt_to_double(rt_v3_length(v));
+            cr_assert(fabsl(got - want) <= 1e-8L * want + 0x1p-32L, "2^%d: |v| = %.17Lg, want %.17Lg", e, got, want);
+        }
+    }
+    long double len = len_of(rt_v3_normalize(v3d(27556, -27556, -27556)));
+    cr_assert(fabsl(len - 1) <= 1e-8L, "length %.17Lg", len);
+}
+
+/* fuzz_cylinder: a ray along the axis grazing the side. The quarter discriminant a w^2 was
+ * about 1e-7, and rounding the product to 2^-32 before its root moved t by 1.2e-5; the
+ * root now comes from the exact product (rt_sqrt_mul). */
+Test(precision, grazing_cylinder_hit_keeps_its_digits)
+{
+    rt_vec3 o = v3d(0.33989918511360884, -0.018693170743063092, 0.36738856416195631);
+    rt_vec3 d = rt_v3_normalize(v3d(0.081130814272910357, 3.4868155245203525, -0.082855044398456812));
+    rt_prim_hit h;
+    cr_assert(rt_intersect_cylinder(o, d, RT_ZERO, RT_C(100.0), &h));
+    cr_assert_eq(h.part, RT_PART_SURFACE);
+    long double want = 0.436093757290318911142801471666L; /* mpmath, 30 digits */
+    cr_assert(fabsl(rt_to_double(h.t) - want) <= 4e-6L, "t = %.17g, want %.17Lg", rt_to_double(h.t), want);
+}
+
+/* fuzz_bvh: a triangle 1000 across seen from 9000 away. The sum of u az + v bz + w cz
+ * passed 2^31 and saturated in Q32.32, and t came out hundreds of units short; it is now
+ * one exact sum divided once (rt_dot3_div). */
+Test(precision, far_large_triangle_gets_its_distance)
+{
+    rt_vec3 a = v3d(-600, -500, 400), b = v3d(700, -400, 300), c = v3d(-100, 800, 200);
+    rt_vec3 centroid = v3d(0, -100.0 / 3, 300);
+    rt_vec3 dir = rt_v3_normalize(v3d(-0.7, -0.4, -0.59));
+    long double dist = 9000;
+    rt_ray ray = {rt_v3_madd(centroid, dir, rt_from_double(-9000.0)), dir, RT_HIT_EPSILON, RT_REAL_MAX};
+    rt_ray_setup rs = rt_ray_prepare(ray);
+    rt_prim_hit h;
+    cr_assert(rt_intersect_triangle(&rs, a, b, c, &h));
+    cr_assert(fabsl(rt_to_double(h.t) - dist) <= 1e-3L, "t = %.17g, want 9000", rt_to_double(h.t));
+    cr_assert(fabsl(rt_to_double(h.b1) - 1.0L / 3) <= 1e-6L && fabsl(rt_to_double(h.b2) - 1.0L / 3) <= 1e-6L);
+}
+
+/* fuzz_bvh: the inverse of a uniform scale of 939. In Q32.32 1 / det = 1 / 939^3 is about
+ * five lsb, and the object-space cylinder came out 3.7% off the bounds the BVH holds;
+ * each column is now scaled by a power of two before the matrix is inverted, which also
+ * keeps uneven scales (0.25 by 1000) exact to 1e-6. */
+Test(precision, inverse_of_large_and_small_scales)
+{
+    const double scales[][3] = {{939.01305310451426, 939.01305310451426, 939.01305310451426},
+                                {1.0 / 939, 1.0 / 939, 1.0 / 939},
+                                {512, 1, 512},
+                                {0.25, 1000, 7}};
+    for (int i = 0; i < 4; i++) {
+        rt_affine m = rt_affine_trs(v3d(469.5, -12, 3), v3d(10, 20, 30), v3d(scales[i][0], scales[i][1], scales[i][2]));
+        rt_affine inv;
+        cr_assert(rt_affine_inverse(&m, &inv));
+        /* The matrices' own rounding: entries as small as 1 / scale, or as large as scale. */
+        double big = fmax(fmax(scales[i][0], scales[i][1]), scales[i][2]);
+        double small = fmin(fmin(scales[i][0], scales[i][1]), scales[i][2]);
+        long double bound = 8 * ULP * (big + 1 / small);
+        for (int k = 0; k < 3; k++) {
+            rt_vec3 axis = rt_v3(k == 0 ? RT_ONE : RT_ZERO, k == 1 ? RT_ONE : RT_ZERO, k == 2 ? RT_ONE : RT_ZERO);
+            rt_vec3 back = rt_affine_vector(&inv, rt_affine_vector(&m, axis));
+            long double err = len_of(rt_v3_sub(back, axis));
+            cr_assert(err <= bound, "scale %d, axis %d: inverse off by %.3Lg", i, k, err);
+        }
+        rt_vec3 p = v3d(1.5, -2.25, 0.125);
+        long double err = len_of(rt_v3_sub(rt_affine_point(&inv, rt_affine_point(&m, p)), p));
+        cr_assert(err <= 1e3L * bound, "scale %d: point off by %.3Lg", i, err);
+    }
+}
