@@ -110,8 +110,8 @@ static bool time_build(const rt_scene *scene, uint32_t repeats)
 static void print_memory(const rt_scene *s)
 {
     double tris = s->triangle_count ? (double)s->triangle_count : 1.0;
-    double mesh = (double)s->vertex_count * (2 * sizeof(rt_vec3) + sizeof(rt_vec2)) +
-                  (double)s->triangle_count * sizeof(rt_triangle);
+    double mesh = (double)s->vertex_count * (2 * sizeof(rt_vec3) + (s->uvs ? sizeof(rt_vec2) : 0)) +
+                  (double)s->triangle_count * sizeof(rt_triangle) + (double)s->object_count * sizeof(rt_object);
     double bvh = (double)s->bvh.node_count * sizeof(rt_bvh_node) + (double)s->prim_count * sizeof(uint32_t);
     printf("vertices %u\ntriangles %u\nbvh_nodes %u\nbvh_depth %u\n", s->vertex_count, s->triangle_count,
            s->bvh.node_count, s->bvh.depth);

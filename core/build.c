@@ -83,7 +83,7 @@ static rt_status build_objects(const rt_scene_desc *d, rt_arena *arena, rt_scene
     rt_mesh_desc *meshes = RT_NEW_ARRAY(arena, rt_mesh_desc, d->object_count);
     if (!s->objects || !meshes) return fail(err, RT_ERR_NOMEM, "out of memory for objects", UINT32_MAX);
     uint64_t vertices = 0, triangles = 0;
-    uint32_t quadrics = 0;
+    uint32_t quadrics = 0, with_uvs = 0;
     for (uint32_t i = 0; i < d->object_count; i++) {
         const rt_object_desc *o = &d->objects[i];
         rt_object *obj = &s->objects[i];
@@ -106,6 +106,7 @@ static rt_status build_objects(const rt_scene_desc *d, rt_arena *arena, rt_scene
         if (st != RT_OK) return st;
         vertices += meshes[i].vertex_count;
         triangles += meshes[i].triangle_count;
+        if (meshes[i].uvs) with_uvs++;
     }
     if (vertices > UINT32_MAX / 2 || triangles + quadrics > UINT32_MAX / 2)
         return fail(err, RT_ERR_INVALID, "scene has too many triangles", UINT32_MAX);
@@ -113,29 +114,34 @@ static rt_status build_objects(const rt_scene_desc *d, rt_arena *arena, rt_scene
     s->triangle_count = (uint32_t)triangles;
     s->positions = RT_NEW_ARRAY(arena, rt_vec3, s->vertex_count);
     s->normals = RT_NEW_ARRAY(arena, rt_vec3, s->vertex_count);
-    s->uvs = RT_NEW_ARRAY(arena, rt_vec2, s->vertex_count);
+    /* A mesh without uvs reads uv (0, 0); when none has them the array is not kept. */
+    s->uvs = with_uvs ? RT_NEW_ARRAY(arena, rt_vec2, s->vertex_count) : NULL;
     s->triangles = RT_NEW_ARRAY(arena, rt_triangle, s->triangle_count);
     s->quadric_objects = RT_NEW_ARRAY(arena, uint32_t, quadrics);
-    if (!s->positions || !s->normals || !s->uvs || !s->triangles || !s->quadric_objects)
+    s->mesh_object_count = d->object_count - quadrics;
+    s->mesh_objects = RT_NEW_ARRAY(arena, uint32_t, s->mesh_object_count);
+    if (!s->positions || !s->normals || (with_uvs && !s->uvs) || !s->triangles || !s->quadric_objects ||
+        !s->mesh_objects)
         return fail(err, RT_ERR_NOMEM, "out of memory for meshes", UINT32_MAX);
-    uint32_t v0 = 0, t0 = 0, q = 0;
+    uint32_t v0 = 0, t0 = 0, q = 0, mo = 0;
     for (uint32_t i = 0; i < d->object_count; i++) {
-        const rt_object *obj = &s->objects[i];
+        rt_object *obj = &s->objects[i];
+        obj->first_triangle = t0;
+        obj->triangle_count = 0;
         if (obj->kind != RT_SHAPE_MESH) {
             s->quadric_objects[q++] = i;
             continue;
         }
+        s->mesh_objects[mo++] = i;
         const rt_mesh_desc *m = &meshes[i];
         for (uint32_t v = 0; v < m->vertex_count; v++) {
             s->positions[v0 + v] = rt_affine_point(&obj->to_world, m->positions[v]);
             s->normals[v0 + v] = rt_mat3_apply(&obj->normal_to_world, m->normals[v]);
             if (m->uvs) s->uvs[v0 + v] = m->uvs[v];
         }
-        for (uint32_t t = 0; t < m->triangle_count; t++) {
-            rt_triangle *tri = &s->triangles[t0 + t];
-            for (int k = 0; k < 3; k++) tri->v[k] = v0 + m->indices[3 * t + k];
-            tri->object = i;
-        }
+        for (uint32_t t = 0; t < m->triangle_count; t++)
+            for (int k = 0; k < 3; k++) s->triangles[t0 + t].v[k] = v0 + m->indices[3 * t + k];
+        obj->triangle_count = m->triangle_count;
         v0 += m->vertex_count;
         t0 += m->triangle_count;
     }

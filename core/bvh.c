@@ -2,7 +2,11 @@
 #include "bvh.h"
 
 #define BIN_COUNT 16
-#define LEAF_MAX 4
+/* Leaves hold LEAF_MIN references or fewer without asking, at most LEAF_MAX; in between
+ * the SAH decides, pricing a node visit at TRAVERSAL_COST primitive tests. */
+#define LEAF_MIN 4
+#define LEAF_MAX 8
+#define TRAVERSAL_COST RT_C(3.0)
 
 static rt_aabb aabb_empty(void)
 {
@@ -115,7 +119,7 @@ typedef struct {
 } split;
 
 /* Finds the cheapest binned split of a task's references, binning all three axes in one
- * pass; false if a leaf is cheaper. */
+ * pass; false if a leaf is cheaper (and the task may be a leaf), or nothing splits. */
 static bool choose_split(const build_ref *refs, const build_task *t, split *out)
 {
     rt_aabb box[3][BIN_COUNT];
@@ -143,7 +147,9 @@ static bool choose_split(const build_ref *refs, const build_task *t, split *out)
         n_in[1][by]++;
         n_in[2][bz]++;
     }
-    rt_real best_cost = rt_mul(rt_from_int(t->count), aabb_half_area(t->bounds)); /* leaf cost */
+    /* Costs relative to one primitive test over the task's area. */
+    rt_real best_cost = t->count > LEAF_MAX ? RT_REAL_MAX : rt_mul(rt_from_int(t->count), aabb_half_area(t->bounds));
+    rt_real visit = rt_mul(TRAVERSAL_COST, aabb_half_area(t->bounds));
     bool found = false;
     for (int axis = 0; axis < 3; axis++) {
         if (!active[axis]) continue;
@@ -164,8 +170,8 @@ static bool choose_split(const build_ref *refs, const build_task *t, split *out)
             acc = aabb_union(acc, box[axis][b]);
             n += n_in[axis][b];
             if (n == 0 || right_n[b + 1] == 0) continue;
-            rt_real cost = rt_add(rt_mul(rt_from_int(n), aabb_half_area(acc)),
-                                  rt_mul(rt_from_int(right_n[b + 1]), right_area[b + 1]));
+            rt_real cost = rt_add(visit, rt_add(rt_mul(rt_from_int(n), aabb_half_area(acc)),
+                                                rt_mul(rt_from_int(right_n[b + 1]), right_area[b + 1])));
             if (cost < best_cost) {
                 best_cost = cost;
                 found = true;
@@ -208,6 +214,25 @@ static uint32_t partition(build_ref *refs, uint32_t first, uint32_t count, const
     return i - first;
 }
 
+static void store_box(rt_bvh_node *node, rt_aabb b, int grid)
+{
+    node->box[0] = rt_bound_below(b.lo.x, grid);
+    node->box[1] = rt_bound_below(b.lo.y, grid);
+    node->box[2] = rt_bound_below(b.lo.z, grid);
+    node->box[3] = rt_bound_above(b.hi.x, grid);
+    node->box[4] = rt_bound_above(b.hi.y, grid);
+    node->box[5] = rt_bound_above(b.hi.z, grid);
+}
+
+rt_aabb rt_bvh_node_box(const rt_bvh *bvh, const rt_bvh_node *node)
+{
+    const rt_bound *b = node->box;
+    int g = bvh->grid;
+    rt_aabb r = {rt_v3(rt_bound_value(b[0], g), rt_bound_value(b[1], g), rt_bound_value(b[2], g)),
+                 rt_v3(rt_bound_value(b[3], g), rt_bound_value(b[4], g), rt_bound_value(b[5], g))};
+    return r;
+}
+
 /* Nodes are made in scratch for the worst case (2n - 1) at the arena's mark, then the
  * arena is reset and only the nodes made are kept there, in place. */
 rt_status rt_bvh_build(rt_scene *scene, rt_arena *arena)
@@ -229,9 +254,12 @@ rt_status rt_bvh_build(rt_scene *scene, rt_arena *arena)
         root.bounds = aabb_union(root.bounds, refs[i].bounds);
         root.centroids = aabb_add_point(root.centroids, centroid_of(&refs[i]));
     }
+    rt_vec3 lo = root.bounds.lo, hi = root.bounds.hi;
+    bvh->grid = rt_bound_grid(rt_max(rt_max(rt_max(rt_abs(lo.x), rt_abs(lo.y)), rt_max(rt_abs(lo.z), rt_abs(hi.x))),
+                                     rt_max(rt_abs(hi.y), rt_abs(hi.z))));
     bvh->node_count = 1;
     bvh->depth = 1;
-    bvh->nodes[0].bounds = aabb_empty();
+    store_box(&bvh->nodes[0], aabb_empty(), bvh->grid);
     bvh->nodes[0].first = 0;
     bvh->nodes[0].count = 0;
     uint32_t top = 0;
@@ -239,12 +267,12 @@ rt_status rt_bvh_build(rt_scene *scene, rt_arena *arena)
     while (top > 0) {
         build_task task = stack[--top];
         rt_bvh_node *node = &bvh->nodes[task.node];
-        node->bounds = task.bounds;
+        store_box(node, task.bounds, bvh->grid);
         node->first = task.first;
         node->count = task.count;
         if (task.depth > bvh->depth) bvh->depth = task.depth;
         split s;
-        if (task.count <= LEAF_MAX || task.depth >= RT_BVH_MAX_DEPTH || !choose_split(refs, &task, &s)) continue;
+        if (task.count <= LEAF_MIN || task.depth >= RT_BVH_MAX_DEPTH || !choose_split(refs, &task, &s)) continue;
         rt_aabb left_c, right_c;
         uint32_t left_n = partition(refs, task.first, task.count, &s, &left_c, &right_c);
         uint32_t left = bvh->node_count;
@@ -263,21 +291,23 @@ rt_status rt_bvh_build(rt_scene *scene, rt_arena *arena)
 
 /* ---- Queries ---- */
 
-/* The slab test of rt_intersect_aabb with the per-axis branches decided once per ray:
- * for a non-zero direction component the near plane is lo when it is positive and hi
- * when negative (the products are monotonic in the plane, so this is the swap the
- * general test makes), and without NaN the three axes can be clamped before the one
- * comparison. Rays with a zero component, a non-finite reciprocal or origin keep the
- * general test, whose zero-direction and NaN cases differ. */
+/* The slab test of rt_intersect_aabb on a node's stored box, with the per-axis branches
+ * decided once per ray: for a non-zero direction component the near plane is lo when it
+ * is positive and hi when negative (the products are monotonic in the plane, so this is
+ * the swap the general test makes), and without NaN the three axes can be clamped before
+ * the one comparison. Rays with a zero component, a non-finite reciprocal or origin keep
+ * the general test, whose zero-direction and NaN cases differ. */
 typedef struct {
     rt_vec3 origin, inv;
     rt_real t_min;
-    size_t near[3], far[3]; /* byte offsets of each axis' near and far plane in an rt_aabb */
+    int near[3], far[3]; /* each axis' near and far plane in rt_bvh_node.box */
+    int grid;
     bool general;
     const rt_ray_setup *rs;
+    const rt_bvh *bvh;
 } slab_ray;
 
-static slab_ray slab_prepare(const rt_ray_setup *rs)
+static slab_ray slab_prepare(const rt_ray_setup *rs, const rt_bvh *bvh)
 {
     rt_vec3 d = rs->ray.direction, o = rs->ray.origin, inv = rs->inv_direction;
     slab_ray r;
@@ -285,28 +315,31 @@ static slab_ray slab_prepare(const rt_ray_setup *rs)
     r.inv = inv;
     r.t_min = rs->ray.t_min;
     r.rs = rs;
+    r.bvh = bvh;
+    r.grid = bvh->grid;
     for (int k = 0; k < 3; k++) {
-        size_t lo = offsetof(rt_aabb, lo) + (size_t)k * sizeof(rt_real), hi = lo + offsetof(rt_aabb, hi);
         bool neg = rt_v3_get(d, k) < RT_ZERO;
-        r.near[k] = neg ? hi : lo;
-        r.far[k] = neg ? lo : hi;
+        r.near[k] = neg ? 3 + k : k;
+        r.far[k] = neg ? k : 3 + k;
     }
     r.general = d.x == RT_ZERO || d.y == RT_ZERO || d.z == RT_ZERO || !rt_is_finite(inv.x) || !rt_is_finite(inv.y) ||
                 !rt_is_finite(inv.z) || !rt_is_finite(o.x) || !rt_is_finite(o.y) || !rt_is_finite(o.z);
     return r;
 }
 
-static inline rt_real plane(const rt_aabb *b, size_t offset) { return *(const rt_real *)((const char *)b + offset); }
-
-static inline bool slab_hit(const slab_ray *r, const rt_aabb *b, rt_real t_max, rt_real *t_enter)
+static inline bool slab_hit(const slab_ray *r, const rt_bvh_node *node, rt_real t_max, rt_real *t_enter)
 {
-    if (r->general) return rt_intersect_aabb(r->rs, b, t_max, t_enter);
-    rt_real x0 = rt_mul(rt_sub(plane(b, r->near[0]), r->origin.x), r->inv.x);
-    rt_real x1 = rt_mul(rt_sub(plane(b, r->far[0]), r->origin.x), r->inv.x);
-    rt_real y0 = rt_mul(rt_sub(plane(b, r->near[1]), r->origin.y), r->inv.y);
-    rt_real y1 = rt_mul(rt_sub(plane(b, r->far[1]), r->origin.y), r->inv.y);
-    rt_real z0 = rt_mul(rt_sub(plane(b, r->near[2]), r->origin.z), r->inv.z);
-    rt_real z1 = rt_mul(rt_sub(plane(b, r->far[2]), r->origin.z), r->inv.z);
+    if (r->general) {
+        rt_aabb box = rt_bvh_node_box(r->bvh, node);
+        return rt_intersect_aabb(r->rs, &box, t_max, t_enter);
+    }
+    const rt_bound *b = node->box;
+    rt_real x0 = rt_mul(rt_sub(rt_bound_value(b[r->near[0]], r->grid), r->origin.x), r->inv.x);
+    rt_real x1 = rt_mul(rt_sub(rt_bound_value(b[r->far[0]], r->grid), r->origin.x), r->inv.x);
+    rt_real y0 = rt_mul(rt_sub(rt_bound_value(b[r->near[1]], r->grid), r->origin.y), r->inv.y);
+    rt_real y1 = rt_mul(rt_sub(rt_bound_value(b[r->far[1]], r->grid), r->origin.y), r->inv.y);
+    rt_real z0 = rt_mul(rt_sub(rt_bound_value(b[r->near[2]], r->grid), r->origin.z), r->inv.z);
+    rt_real z1 = rt_mul(rt_sub(rt_bound_value(b[r->far[2]], r->grid), r->origin.z), r->inv.z);
     rt_real t0 = rt_max(rt_max(rt_max(r->t_min, x0), y0), z0);
     rt_real t1 = rt_min(rt_min(rt_min(t_max, x1), y1), z1);
     *t_enter = t0;
@@ -341,12 +374,12 @@ typedef struct {
 static bool nearest_bvh(const rt_scene *scene, const rt_ray_setup *rs, bool any, rt_scene_hit *out)
 {
     const rt_bvh_node *nodes = scene->bvh.nodes;
-    slab_ray sr = slab_prepare(rs);
+    slab_ray sr = slab_prepare(rs, &scene->bvh);
     bool found = false;
     stack_entry stack[RT_BVH_MAX_DEPTH + 2];
     uint32_t top = 0;
     rt_real t_root;
-    if (scene->prim_count == 0 || !slab_hit(&sr, &nodes[0].bounds, rs->ray.t_max, &t_root)) return false;
+    if (scene->prim_count == 0 || !slab_hit(&sr, &nodes[0], rs->ray.t_max, &t_root)) return false;
     stack[top++] = (stack_entry){0, t_root};
     while (top > 0) {
         stack_entry e = stack[--top];
@@ -355,8 +388,8 @@ static bool nearest_bvh(const rt_scene *scene, const rt_ray_setup *rs, bool any,
         /* Descend into the nearer child directly; the farther one waits on the stack. */
         while (node->count == 0) {
             rt_real limit = found ? out->hit.t : rs->ray.t_max, ta, tb;
-            bool hit_a = slab_hit(&sr, &nodes[node->first].bounds, limit, &ta);
-            bool hit_b = slab_hit(&sr, &nodes[node->first + 1].bounds, limit, &tb);
+            bool hit_a = slab_hit(&sr, &nodes[node->first], limit, &ta);
+            bool hit_b = slab_hit(&sr, &nodes[node->first + 1], limit, &tb);
             if (hit_a && hit_b) {
                 bool a_first = ta <= tb;
                 stack[top++] = a_first ? (stack_entry){node->first + 1, tb} : (stack_entry){node->first, ta};

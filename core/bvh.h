@@ -18,6 +18,9 @@ typedef struct {
 /* Builds scene->bvh over scene->prim_count primitives. Scratch comes from the arena too. */
 rt_status rt_bvh_build(rt_scene *scene, rt_arena *arena);
 
+/* A node's box as stored (holding the exact bounds it was built from). */
+rt_aabb rt_bvh_node_box(const rt_bvh *bvh, const rt_bvh_node *node);
+
 /* The world-space bounds of primitive `prim`. */
 rt_aabb rt_prim_bounds(const rt_scene *scene, uint32_t prim);
 /* Tests one primitive against the ray. */

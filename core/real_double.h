@@ -30,6 +30,37 @@ static inline rt_real rt_sqrt(rt_real a) { return a > 0.0 ? __builtin_sqrt(a) : 
 /* sqrt(a * b); 0 when the product is not positive. */
 static inline rt_real rt_sqrt_mul(rt_real a, rt_real b) { return rt_sqrt(a * b); }
 
+/* A BVH box coordinate in four bytes: a float rounded outwards, so the stored box holds
+ * the exact one. `grid` is the fixed build's (rt_bound_grid); floats need none. */
+typedef float rt_bound;
+#define RT_FLOAT_MAX 3.4028234663852886e38
+static inline int rt_bound_grid(rt_real max_abs) { return (void)max_abs, 0; }
+/* The float next to f (finite) towards +infinity (up) or -infinity. */
+static inline float rt_float_step(float f, bool up)
+{
+    if (f == 0.0f) return up ? 0x1p-149f : -0x1p-149f;
+    union { float f; uint32_t u; } b = {f};
+    b.u = (f > 0.0f) == up ? b.u + 1 : b.u - 1;
+    return b.f;
+}
+static inline rt_bound rt_bound_below(rt_real x, int grid)
+{
+    (void)grid;
+    if (x >= RT_FLOAT_MAX) return (float)RT_FLOAT_MAX;
+    if (x < -RT_FLOAT_MAX) return -__builtin_inff();
+    float f = (float)x;
+    return (double)f > x ? rt_float_step(f, false) : f;
+}
+static inline rt_bound rt_bound_above(rt_real x, int grid)
+{
+    (void)grid;
+    if (x <= -RT_FLOAT_MAX) return (float)-RT_FLOAT_MAX;
+    if (x > RT_FLOAT_MAX) return __builtin_inff();
+    float f = (float)x;
+    return (double)f < x ? rt_float_step(f, true) : f;
+}
+static inline rt_real rt_bound_value(rt_bound b, int grid) { return (void)grid, (double)b; }
+
 /* Largest integer <= a, saturated to the int32 range. */
 static inline int32_t rt_floor_int(rt_real a)
 {

@@ -107,6 +107,35 @@ rt_real rt_sqrt(rt_real a);
  * b is not positive. */
 rt_real rt_sqrt_mul(rt_real a, rt_real b);
 
+/* A BVH box coordinate in four bytes: the value in units of 2^grid lsb (2^(grid - 32)),
+ * rounded outwards, so the stored box holds the exact one. A scene's grid is the
+ * smallest that keeps its largest coordinate below 2^31 - 2 units: 2^-27 for a scene
+ * within +-32, 2^-16 within +-32768. */
+typedef int32_t rt_bound;
+static inline int rt_bound_grid(rt_real max_abs)
+{
+    uint64_t m = rt_fx_mag(max_abs);
+    int grid = 0;
+    while (grid < 32 && m >> grid >= (UINT64_C(1) << 31) - 2) grid++;
+    return grid;
+}
+static inline rt_bound rt_fx_bound(int64_t units)
+{
+    return units > INT32_MAX ? INT32_MAX : units < -INT32_MAX ? -INT32_MAX : (rt_bound)units;
+}
+/* floor and ceil of x / 2^grid by shifts of the magnitude (no signed right shift). */
+static inline rt_bound rt_bound_below(rt_real x, int grid)
+{
+    uint64_t m = rt_fx_mag(x), q = m >> grid, up = q + ((m & ((UINT64_C(1) << grid) - 1)) != 0);
+    return rt_fx_bound(x < 0 ? -(int64_t)up : (int64_t)q);
+}
+static inline rt_bound rt_bound_above(rt_real x, int grid)
+{
+    uint64_t m = rt_fx_mag(x), q = m >> grid, up = q + ((m & ((UINT64_C(1) << grid) - 1)) != 0);
+    return rt_fx_bound(x < 0 ? -(int64_t)q : (int64_t)up);
+}
+static inline rt_real rt_bound_value(rt_bound b, int grid) { return (rt_real)b * ((rt_real)1 << grid); }
+
 /* Largest integer <= a (the high word); always within the int32 range. */
 static inline int32_t rt_floor_int(rt_real a)
 {

@@ -110,11 +110,12 @@ typedef struct {
     uint32_t source;
     rt_affine to_world, to_object;
     rt_mat3 normal_to_world; /* inverse transpose of to_world.linear */
+    /* A mesh's triangles are rt_scene.triangles[first_triangle .. + triangle_count). */
+    uint32_t first_triangle, triangle_count;
 } rt_object;
 
 typedef struct {
-    uint32_t v[3];   /* indices into rt_scene.positions / normals / uvs */
-    uint32_t object; /* the mesh object it belongs to */
+    uint32_t v[3]; /* indices into rt_scene.positions / normals / uvs */
 } rt_triangle;
 
 typedef struct {
@@ -139,10 +140,11 @@ typedef struct {
 
 typedef struct { rt_vec3 lo, hi; } rt_aabb;
 
-/* A BVH node: an inner node's children are nodes[first] and nodes[first + 1];
- * a leaf covers prim_refs[first .. first + count). */
+/* A BVH node, 32 bytes: its box as lo x, y, z then hi x, y, z, each rounded outwards to
+ * four bytes (rt_bound, on the tree's grid); an inner node's children are nodes[first]
+ * and nodes[first + 1], a leaf covers prim_refs[first .. first + count). */
 typedef struct {
-    rt_aabb bounds;
+    rt_bound box[6];
     uint32_t first;
     uint32_t count; /* 0 for inner nodes */
 } rt_bvh_node;
@@ -152,6 +154,7 @@ typedef struct {
     uint32_t node_count;
     uint32_t *prim_refs;
     uint32_t depth;
+    int grid; /* of the nodes' boxes (rt_bound_grid) */
 } rt_bvh;
 
 typedef struct {
@@ -166,7 +169,7 @@ typedef struct {
     /* All mesh triangles, in world space. */
     rt_vec3 *positions;
     rt_vec3 *normals; /* world-space vertex normals, not renormalised */
-    rt_vec2 *uvs;
+    rt_vec2 *uvs;     /* NULL when no mesh has uvs (they are all 0 then) */
     uint32_t vertex_count;
     rt_triangle *triangles;
     uint32_t triangle_count;
@@ -174,6 +177,9 @@ typedef struct {
      * sphere/cylinder object (see rt_prim_*). */
     uint32_t *quadric_objects;
     uint32_t prim_count;
+    /* The mesh objects in order, so in increasing first_triangle (see rt_triangle_object). */
+    uint32_t *mesh_objects;
+    uint32_t mesh_object_count;
     rt_bvh bvh;
     rt_camera camera;
 } rt_scene;

@@ -14,12 +14,28 @@ static rt_surface triangle_surface(const rt_scene *scene, const rt_scene_hit *hi
     rt_vec3 interpolated = rt_v3_add(rt_v3_add(rt_v3_scale(n[tri->v[0]], b0), rt_v3_scale(n[tri->v[1]], b1)),
                                      rt_v3_scale(n[tri->v[2]], b2));
     s.normal = rt_v3_is_zero(interpolated) ? s.geometric_normal : rt_v3_normalize(interpolated);
+    /* Without uvs every vertex reads (0, 0), and so does any blend of them. */
+    s.uv = v2(RT_ZERO, RT_ZERO);
     const rt_vec2 *uv = scene->uvs;
-    rt_vec2 ua = uv[tri->v[0]], ub = uv[tri->v[1]], uc = uv[tri->v[2]];
-    s.uv = v2(rt_add(rt_add(rt_mul(ua.u, b0), rt_mul(ub.u, b1)), rt_mul(uc.u, b2)),
-              rt_add(rt_add(rt_mul(ua.v, b0), rt_mul(ub.v, b1)), rt_mul(uc.v, b2)));
-    s.object = tri->object;
+    if (uv) {
+        rt_vec2 ua = uv[tri->v[0]], ub = uv[tri->v[1]], uc = uv[tri->v[2]];
+        s.uv = v2(rt_add(rt_add(rt_mul(ua.u, b0), rt_mul(ub.u, b1)), rt_mul(uc.u, b2)),
+                  rt_add(rt_add(rt_mul(ua.v, b0), rt_mul(ub.v, b1)), rt_mul(uc.v, b2)));
+    }
+    s.object = rt_triangle_object(scene, hit->prim);
     return s;
+}
+
+uint32_t rt_triangle_object(const rt_scene *scene, uint32_t triangle)
+{
+    /* The last mesh object whose first triangle is at or before it. */
+    uint32_t lo = 0, hi = scene->mesh_object_count;
+    while (hi - lo > 1) {
+        uint32_t mid = lo + (hi - lo) / 2;
+        if (scene->objects[scene->mesh_objects[mid]].first_triangle <= triangle) lo = mid;
+        else hi = mid;
+    }
+    return scene->mesh_objects[lo];
 }
 
 static rt_surface quadric_surface(const rt_scene *scene, const rt_ray *ray, const rt_scene_hit *hit, rt_surface s)

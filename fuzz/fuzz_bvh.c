@@ -38,11 +38,13 @@ static void check_tree(const rt_scene *s)
              bvh->node_count, bvh->depth, s->prim_count);
     for (uint32_t i = 0; i < bvh->node_count; i++) {
         const rt_bvh_node *n = &bvh->nodes[i];
-        const rt_aabb *box = &n->bounds;
+        rt_aabb node_box = rt_bvh_node_box(bvh, n);
+        const rt_aabb *box = &node_box;
         if (n->count == 0) {
             FZ_CHECK(n->first > i && n->first + 1 < bvh->node_count, "node %u has children %u", i, n->first);
             for (uint32_t c = n->first; c < n->first + 2; c++) {
-                const rt_aabb *b = &bvh->nodes[c].bounds;
+                rt_aabb child_box = rt_bvh_node_box(bvh, &bvh->nodes[c]);
+                const rt_aabb *b = &child_box;
                 FZ_CHECK(box->lo.x <= b->lo.x && box->lo.y <= b->lo.y && box->lo.z <= b->lo.z && b->hi.x <= box->hi.x &&
                              b->hi.y <= box->hi.y && b->hi.z <= box->hi.z,
                          "child %u pokes out of node %u", c, i);

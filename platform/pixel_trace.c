@@ -41,12 +41,6 @@ static void link_tree(rt_pixel_trace *pt)
     }
 }
 
-static void find_first_triangles(rt_pixel_trace *pt)
-{
-    const rt_scene *s = &pt->built->scene;
-    for (uint32_t t = s->triangle_count; t-- > 0;) pt->first_triangle[s->triangles[t].object] = t;
-}
-
 bool rt_pixel_trace_run(rt_pixel_trace *pt, const rt_built_scene *built, uint32_t x, uint32_t y, uint32_t sample,
                         uint32_t capacity)
 {
@@ -65,9 +59,8 @@ bool rt_pixel_trace_run(rt_pixel_trace *pt, const rt_built_scene *built, uint32_
     pt->next_sibling = index_array(capacity);
     pt->first_light = index_array(capacity);
     pt->next_light = index_array(capacity);
-    pt->first_triangle = index_array(scene->object_count);
     if (!pt->log.rays || !pt->log.lights || !pt->first_child || !pt->first_shadow || !pt->next_sibling ||
-        !pt->first_light || !pt->next_light || !pt->first_triangle) {
+        !pt->first_light || !pt->next_light) {
         rt_pixel_trace_free(pt);
         return false;
     }
@@ -83,7 +76,6 @@ bool rt_pixel_trace_run(rt_pixel_trace *pt, const rt_built_scene *built, uint32_
     pt->rgb[1] = rt_color_to_byte(pt->color.y);
     pt->rgb[2] = rt_color_to_byte(pt->color.z);
     link_tree(pt);
-    find_first_triangles(pt);
     return true;
 }
 
@@ -96,7 +88,6 @@ void rt_pixel_trace_free(rt_pixel_trace *pt)
     free(pt->next_sibling);
     free(pt->first_light);
     free(pt->next_light);
-    free(pt->first_triangle);
     memset(pt, 0, sizeof *pt);
 }
 
@@ -111,7 +102,7 @@ rt_hit_names rt_pixel_trace_names(const rt_pixel_trace *pt, const rt_ray_record 
     if (obj->material < l->desc.material_count) n.material = l->material_names[obj->material];
     uint32_t prim = r->scene_hit.prim;
     if (prim < s->triangle_count) {
-        n.triangle = prim - pt->first_triangle[r->surface.object];
+        n.triangle = prim - obj->first_triangle;
     } else if (obj->kind == RT_SHAPE_SPHERE) {
         n.primitive = "sphere";
     } else {

@@ -22,7 +22,6 @@ typedef struct {
     uint32_t *next_sibling;   /* per ray */
     uint32_t *first_light;    /* per ray: its light records */
     uint32_t *next_light;     /* per light record */
-    uint32_t *first_triangle; /* per object: its first triangle in rt_scene.triangles */
     /* The pixel's averaged colour, exactly as rt_render_pixel computes it, and its bytes. */
     rt_vec3 color;
     uint8_t rgb[3];

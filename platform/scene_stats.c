@@ -3,6 +3,8 @@
 
 #include <string.h>
 
+#include "bvh.h"
+
 static double surface_area(const rt_aabb *b)
 {
     double x = rt_to_double(rt_sub(b->hi.x, b->lo.x)), y = rt_to_double(rt_sub(b->hi.y, b->lo.y)),
@@ -14,12 +16,14 @@ double rt_bvh_sah_cost(const rt_bvh *bvh, uint32_t prim_count)
 {
     /* Without primitives the root is an empty leaf whose box is inverted. */
     if (prim_count == 0) return 0;
-    double root = surface_area(&bvh->nodes[0].bounds);
+    rt_aabb root_box = rt_bvh_node_box(bvh, &bvh->nodes[0]);
+    double root = surface_area(&root_box);
     if (!(root > 0)) return prim_count;
     double cost = 0;
     for (uint32_t i = 0; i < bvh->node_count; i++) {
         const rt_bvh_node *n = &bvh->nodes[i];
-        cost += (n->count ? n->count : 1) * surface_area(&n->bounds) / root;
+        rt_aabb box = rt_bvh_node_box(bvh, n);
+        cost += (n->count ? n->count : 1) * surface_area(&box) / root;
     }
     return cost;
 }

@@ -37,13 +37,14 @@ rt_aabb *rt_svg_object_bounds(const rt_scene *scene)
     rt_aabb empty = {{RT_REAL_MAX, RT_REAL_MAX, RT_REAL_MAX},
                      {rt_neg(RT_REAL_MAX), rt_neg(RT_REAL_MAX), rt_neg(RT_REAL_MAX)}};
     for (uint32_t i = 0; i < scene->object_count; i++) b[i] = empty;
-    for (uint32_t t = 0; t < scene->triangle_count; t++) {
-        rt_aabb *ob = &b[scene->triangles[t].object];
-        for (int k = 0; k < 3; k++) {
-            rt_vec3 p = scene->positions[scene->triangles[t].v[k]];
-            ob->lo = rt_v3_min(ob->lo, p);
-            ob->hi = rt_v3_max(ob->hi, p);
-        }
+    for (uint32_t i = 0; i < scene->object_count; i++) {
+        const rt_object *obj = &scene->objects[i];
+        for (uint32_t t = obj->first_triangle; t < obj->first_triangle + obj->triangle_count; t++)
+            for (int k = 0; k < 3; k++) {
+                rt_vec3 p = scene->positions[scene->triangles[t].v[k]];
+                b[i].lo = rt_v3_min(b[i].lo, p);
+                b[i].hi = rt_v3_max(b[i].hi, p);
+            }
     }
     for (uint32_t p = scene->triangle_count; p < scene->prim_count; p++)
         b[scene->quadric_objects[p - scene->triangle_count]] = rt_prim_bounds(scene, p);

@@ -154,15 +154,16 @@ Test(info, sah_cost_of_a_hand_made_tree)
 {
     /* Root [0,1]^3 (area 6) over two halves [0,0.5]x[0,1]^2 (area 4 each) holding 1 and 2
      * primitives: 1 traversal + 4/6 * 1 test + 4/6 * 2 tests = 3. */
-    rt_real o = RT_ZERO, h = RT_C(0.5), l = RT_ONE;
+    int g = rt_bound_grid(RT_ONE);
+    rt_bound o = rt_bound_below(RT_ZERO, g), h = rt_bound_below(RT_C(0.5), g), l = rt_bound_below(RT_ONE, g);
     rt_bvh_node nodes[3] = {
-        {{{o, o, o}, {l, l, l}}, 1, 0},
-        {{{o, o, o}, {h, l, l}}, 0, 1},
-        {{{h, o, o}, {l, l, l}}, 1, 2},
+        {{o, o, o, l, l, l}, 1, 0},
+        {{o, o, o, h, l, l}, 0, 1},
+        {{h, o, o, l, l, l}, 1, 2},
     };
-    rt_bvh bvh = {nodes, 3, NULL, 2};
+    rt_bvh bvh = {nodes, 3, NULL, 2, g};
     cr_expect_float_eq(rt_bvh_sah_cost(&bvh, 3), 3.0, 1e-12);
-    rt_bvh leaf = {nodes + 2, 1, NULL, 1};
+    rt_bvh leaf = {nodes + 2, 1, NULL, 1, g};
     cr_expect_float_eq(rt_bvh_sah_cost(&leaf, 2), 2.0, 1e-12, "a lone leaf: one test per primitive");
     cr_expect_eq(rt_bvh_sah_cost(&bvh, 0), 0.0, "no primitives");
 }

@@ -101,3 +101,31 @@ Test(precision, inverse_of_large_and_small_scales)
         cr_assert(err <= 1e3L * bound, "scale %d: point off by %.3Lg", i, err);
     }
 }
+
+/* BVH boxes are stored in four bytes per coordinate (rt_bound): each stored plane must lie
+ * outside the exact one (or on it), and at most one step of the format away. */
+Test(precision, bounds_round_outwards_by_at_most_one_step)
+{
+    const double limits[] = {0.75, 40, 30000, 2e9};
+    for (int l = 0; l < 4; l++) {
+        rt_real limit = rt_from_double(limits[l]);
+        int grid = rt_bound_grid(limit);
+        uint64_t state = 12345;
+        for (int i = 0; i < 100000; i++) {
+            state = state * 6364136223846793005u + 1442695040888963407u;
+            double unit = (double)(state >> 11) * 0x1p-53 * 2 - 1; /* in [-1, 1) */
+            rt_real x = rt_from_double(unit * limits[l] * ldexp(1.0, -(int)(state % 24)));
+            if (i < 4) x = i == 0 ? limit : i == 1 ? rt_neg(limit) : i == 2 ? RT_ZERO : rt_from_double(-1e-30);
+            rt_real lo = rt_bound_value(rt_bound_below(x, grid), grid), hi = rt_bound_value(rt_bound_above(x, grid), grid);
+            cr_assert(lo <= x && x <= hi, "limit %g: %.17g stored as [%.17g, %.17g]", limits[l], rt_to_double(x),
+                      rt_to_double(lo), rt_to_double(hi));
+#ifdef RT_REAL_FIXED
+            long double step = ldexpl(1.0L, grid - 32);
+#else
+            long double step = fabsl(rt_to_double(x)) * 0x1p-23L + 0x1p-149L;
+#endif
+            cr_assert(rt_to_double(hi) - rt_to_double(lo) <= 2 * step, "limit %g: %.17g stored as [%.17g, %.17g]",
+                      limits[l], rt_to_double(x), rt_to_double(lo), rt_to_double(hi));
+        }
+    }
+}
