@@ -79,3 +79,29 @@ int rt_parse_scene_option(const char *cmd, int argc, char **argv, int *i, rt_bui
     (*i)++;
     return 1;
 }
+
+int rt_parse_common_option(const char *cmd, const char *usage, int argc, char **argv, int *i, rt_build_options *opt)
+{
+    const char *arg = argv[*i];
+    if (!strcmp(arg, "--help") || !strcmp(arg, "-h")) {
+        fputs(usage, stdout);
+        exit(RT_EXIT_OK);
+    }
+    return rt_parse_scene_option(cmd, argc, argv, i, opt);
+}
+
+int rt_take_scene_argument(const char *cmd, const char *arg, const char **scene)
+{
+    if (arg[0] == '-' && arg[1]) return rt_usage_error(cmd, "unknown option", arg);
+    if (*scene) return rt_usage_error(cmd, "unexpected argument", arg);
+    *scene = arg;
+    return RT_EXIT_OK;
+}
+
+int rt_open_scene_or_report(const char *cmd, const char *path, const rt_build_options *opt, rt_built_scene *out)
+{
+    char err[RT_ERR_SIZE];
+    int rc = rt_scene_open(path, opt, out, err, sizeof err);
+    if (rc != RT_EXIT_OK) fprintf(stderr, "rtk %s: %s\n", cmd, err);
+    return rc;
+}

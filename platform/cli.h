@@ -23,6 +23,15 @@ rt_build_options rt_default_build_options(void);
  * RT_EXIT_USAGE's negation after printing a usage error. */
 int rt_parse_scene_option(const char *cmd, int argc, char **argv, int *i, rt_build_options *opt);
 
+/* rt_parse_scene_option, and --help / -h, which prints usage and exits with 0: what every
+ * scene command looks for first at argv[*i]. Same returns as rt_parse_scene_option. */
+int rt_parse_common_option(const char *cmd, const char *usage, int argc, char **argv, int *i, rt_build_options *opt);
+/* An argument no option took: the scene file the first time, else a usage error (an
+ * unknown option or a second file). Returns RT_EXIT_OK or RT_EXIT_USAGE. */
+int rt_take_scene_argument(const char *cmd, const char *arg, const char **scene);
+/* rt_scene_open, reporting a failure as "rtk <cmd>: <what went wrong>" on stderr. */
+int rt_open_scene_or_report(const char *cmd, const char *path, const rt_build_options *opt, rt_built_scene *out);
+
 #define RT_SCENE_OPTIONS_HELP \
     "  --width N           override the camera's Render Width (px), 1..16384\n" \
     "  --height N          override the camera's Render Height (px), 1..16384\n" \

@@ -60,13 +60,10 @@ static int parse_args(int argc, char **argv, debug_args *a)
         const char *arg = argv[i];
         const char *val = i + 1 < argc ? argv[i + 1] : NULL;
         uint32_t n;
-        int scene_option = rt_parse_scene_option("debug", argc, argv, &i, &a->build);
-        if (scene_option < 0) return -scene_option;
-        if (scene_option > 0) continue;
-        if (!strcmp(arg, "--help") || !strcmp(arg, "-h")) {
-            fputs(usage, stdout);
-            exit(RT_EXIT_OK);
-        } else if (!strcmp(arg, "--pixel")) {
+        int common = rt_parse_common_option("debug", usage, argc, argv, &i, &a->build);
+        if (common < 0) return -common;
+        if (common > 0) continue;
+        if (!strcmp(arg, "--pixel")) {
             if (!val) return rt_usage_error("debug", "missing X,Y after", arg);
             a->pixel = val, i++;
         } else if (!strcmp(arg, "--sample")) {
@@ -78,12 +75,9 @@ static int parse_args(int argc, char **argv, debug_args *a)
             a->svg = val, i++;
         } else if (!strcmp(arg, "--json")) {
             a->json = true;
-        } else if (arg[0] == '-' && arg[1]) {
-            return rt_usage_error("debug", "unknown option", arg);
-        } else if (!a->scene) {
-            a->scene = arg;
         } else {
-            return rt_usage_error("debug", "unexpected argument", arg);
+            int rc = rt_take_scene_argument("debug", arg, &a->scene);
+            if (rc != RT_EXIT_OK) return rc;
         }
     }
     if (!a->scene) return rt_usage_error("debug", "no scene file given", NULL);
@@ -140,13 +134,9 @@ int rt_cmd_debug(int argc, char **argv)
     debug_args a;
     int rc = parse_args(argc, argv, &a);
     if (rc != RT_EXIT_OK) return rc;
-    char err[RT_ERR_SIZE];
     rt_built_scene built;
-    rc = rt_scene_open(a.scene, &a.build, &built, err, sizeof err);
-    if (rc != RT_EXIT_OK) {
-        fprintf(stderr, "rtk debug: %s\n", err);
-        return rc;
-    }
+    rc = rt_open_scene_or_report("debug", a.scene, &a.build, &built);
+    if (rc != RT_EXIT_OK) return rc;
     rt_pixel_trace pt;
     rc = check_pixel(&a, &built.scene.camera);
     if (rc == RT_EXIT_OK && !rt_pixel_trace_run(&pt, &built, a.x, a.y, a.sample, LOG_CAPACITY)) {

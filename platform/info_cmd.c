@@ -38,20 +38,14 @@ static int parse_args(int argc, char **argv, info_args *a)
     a->build = rt_default_build_options();
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i];
-        int scene_option = rt_parse_scene_option("info", argc, argv, &i, &a->build);
-        if (scene_option < 0) return -scene_option;
-        if (scene_option > 0) continue;
-        if (!strcmp(arg, "--help") || !strcmp(arg, "-h")) {
-            fputs(usage, stdout);
-            exit(RT_EXIT_OK);
-        } else if (!strcmp(arg, "--json")) {
+        int common = rt_parse_common_option("info", usage, argc, argv, &i, &a->build);
+        if (common < 0) return -common;
+        if (common > 0) continue;
+        if (!strcmp(arg, "--json")) {
             a->json = true;
-        } else if (arg[0] == '-' && arg[1]) {
-            return rt_usage_error("info", "unknown option", arg);
-        } else if (!a->scene) {
-            a->scene = arg;
         } else {
-            return rt_usage_error("info", "unexpected argument", arg);
+            int rc = rt_take_scene_argument("info", arg, &a->scene);
+            if (rc != RT_EXIT_OK) return rc;
         }
     }
     if (!a->scene) return rt_usage_error("info", "no scene file given", NULL);
@@ -166,13 +160,9 @@ int rt_cmd_info(int argc, char **argv)
     info_args a;
     int rc = parse_args(argc, argv, &a);
     if (rc != RT_EXIT_OK) return rc;
-    char err[RT_ERR_SIZE];
     rt_built_scene built;
-    rc = rt_scene_open(a.scene, &a.build, &built, err, sizeof err);
-    if (rc != RT_EXIT_OK) {
-        fprintf(stderr, "rtk info: %s\n", err);
-        return rc;
-    }
+    rc = rt_open_scene_or_report("info", a.scene, &a.build, &built);
+    if (rc != RT_EXIT_OK) return rc;
     rt_scene_stats st;
     rt_scene_stats_compute(&built, &st);
     if (a.json) print_json(a.scene, &built, &st);

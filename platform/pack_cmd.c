@@ -29,33 +29,24 @@ int rt_cmd_pack(int argc, char **argv)
     rt_build_options build = rt_default_build_options();
     const char *scene = NULL, *output = NULL;
     for (int i = 1; i < argc; i++) {
-        int scene_option = rt_parse_scene_option("pack", argc, argv, &i, &build);
-        if (scene_option < 0) return -scene_option;
-        if (scene_option > 0) continue;
+        int common = rt_parse_common_option("pack", usage, argc, argv, &i, &build);
+        if (common < 0) return -common;
+        if (common > 0) continue;
         const char *arg = argv[i];
-        if (!strcmp(arg, "--help") || !strcmp(arg, "-h")) {
-            fputs(usage, stdout);
-            return RT_EXIT_OK;
-        } else if (!strcmp(arg, "-o") || !strcmp(arg, "--output")) {
+        if (!strcmp(arg, "-o") || !strcmp(arg, "--output")) {
             if (i + 1 >= argc) return rt_usage_error("pack", "missing file after", arg);
             output = argv[++i];
-        } else if (arg[0] == '-' && arg[1]) {
-            return rt_usage_error("pack", "unknown option", arg);
-        } else if (!scene) {
-            scene = arg;
         } else {
-            return rt_usage_error("pack", "unexpected argument", arg);
+            int rc = rt_take_scene_argument("pack", arg, &scene);
+            if (rc != RT_EXIT_OK) return rc;
         }
     }
     if (!scene || !output) return rt_usage_error("pack", "give a scene file and -o FILE", NULL);
-    char err[RT_ERR_SIZE];
     rt_built_scene built;
     /* Building checks the scene as a render would, so a blob always renders. */
-    int rc = rt_scene_open(scene, &build, &built, err, sizeof err);
-    if (rc != RT_EXIT_OK) {
-        fprintf(stderr, "rtk pack: %s\n", err);
-        return rc;
-    }
+    int rc = rt_open_scene_or_report("pack", scene, &build, &built);
+    if (rc != RT_EXIT_OK) return rc;
+    char err[RT_ERR_SIZE];
     size_t size = rt_blob_size(&built.loaded.desc);
     uint8_t *bytes = malloc(size);
     if (!bytes || rt_blob_write(&built.loaded.desc, bytes, size) != size) {

@@ -55,13 +55,10 @@ static int parse_args(int argc, char **argv, render_args *a)
         const char *arg = argv[i];
         const char *val = i + 1 < argc ? argv[i + 1] : NULL;
         uint32_t n;
-        int scene_option = rt_parse_scene_option("render", argc, argv, &i, &a->build);
-        if (scene_option < 0) return -scene_option;
-        if (scene_option > 0) continue;
-        if (!strcmp(arg, "--help") || !strcmp(arg, "-h")) {
-            fputs(usage, stdout);
-            exit(RT_EXIT_OK);
-        } else if (!strcmp(arg, "-o") || !strcmp(arg, "--output")) {
+        int common = rt_parse_common_option("render", usage, argc, argv, &i, &a->build);
+        if (common < 0) return -common;
+        if (common > 0) continue;
+        if (!strcmp(arg, "-o") || !strcmp(arg, "--output")) {
             if (!val) return rt_usage_error("render", "missing file after", arg);
             a->output = val, i++;
         } else if (!strcmp(arg, "--threads")) {
@@ -78,12 +75,9 @@ static int parse_args(int argc, char **argv, render_args *a)
             a->quiet = true;
         } else if (!strcmp(arg, "--progress")) {
             a->force_progress = true;
-        } else if (arg[0] == '-' && arg[1]) {
-            return rt_usage_error("render", "unknown option", arg);
-        } else if (!a->scene) {
-            a->scene = arg;
         } else {
-            return rt_usage_error("render", "unexpected argument", arg);
+            int rc = rt_take_scene_argument("render", arg, &a->scene);
+            if (rc != RT_EXIT_OK) return rc;
         }
     }
     if (!a->scene) return rt_usage_error("render", "no scene file given", NULL);
@@ -104,13 +98,9 @@ int rt_cmd_render(int argc, char **argv)
     render_args a;
     int rc = parse_args(argc, argv, &a);
     if (rc != RT_EXIT_OK) return rc;
-    char err[RT_ERR_SIZE];
     rt_built_scene built;
-    rc = rt_scene_open(a.scene, &a.build, &built, err, sizeof err);
-    if (rc != RT_EXIT_OK) {
-        fprintf(stderr, "rtk render: %s\n", err);
-        return rc;
-    }
+    rc = rt_open_scene_or_report("render", a.scene, &a.build, &built);
+    if (rc != RT_EXIT_OK) return rc;
     const rt_camera *cam = &built.scene.camera;
     rt_image img = {cam->width, cam->height, calloc((size_t)cam->width * cam->height, 3)};
     if (!img.rgb) {
@@ -131,6 +121,7 @@ int rt_cmd_render(int argc, char **argv)
         return RT_EXIT_INTERRUPTED;
     }
     rc = RT_EXIT_OK;
+    char err[RT_ERR_SIZE];
     if (a.output && !rt_image_write(a.output, &img, err, sizeof err)) {
         fprintf(stderr, "rtk render: %s\n", err);
         rc = RT_EXIT_OUTPUT;
