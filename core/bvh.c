@@ -327,7 +327,7 @@ static slab_ray slab_prepare(const rt_ray_setup *rs, const rt_bvh *bvh)
     return r;
 }
 
-static inline bool slab_hit(const slab_ray *r, const rt_bvh_node *node, rt_real t_max, rt_real *t_enter)
+__attribute__((always_inline)) static inline bool slab_hit(const slab_ray *r, const rt_bvh_node *node, rt_real t_max, rt_real *t_enter)
 {
     if (r->general) {
         rt_aabb box = rt_bvh_node_box(r->bvh, node);

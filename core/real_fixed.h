@@ -73,10 +73,21 @@ static inline rt_real rt_sub(rt_real a, rt_real b)
     return r == INT64_MIN ? -RT_REAL_MAX : r;
 }
 
+#if defined(__SIZEOF_INT128__) && !defined(RT_FIXED_PORTABLE)
+/* One signed 128-bit product; truncating (p +- 2^31) / 2^32 rounds halves away from zero,
+ * the same result as the magnitude form below. */
+static inline rt_real rt_mul(rt_real a, rt_real b)
+{
+    __int128 p = (__int128)a * b, half = (__int128)1 << 31;
+    __int128 q = (p < 0 ? p - half : p + half) / ((__int128)1 << 32);
+    return q > INT64_MAX ? RT_REAL_MAX : q < -INT64_MAX ? -RT_REAL_MAX : (rt_real)q;
+}
+#else
 static inline rt_real rt_mul(rt_real a, rt_real b)
 {
     return rt_fx_signed(rt_fx_umulshift(rt_fx_mag(a), rt_fx_mag(b), 32), (a < 0) != (b < 0));
 }
+#endif
 
 /* round(n * 2^shift / d) for 1 <= shift <= 63 and d > 0, halves up, or UINT64_MAX when that
  * is 2^63 or more. One divq on x86-64, two 64-bit divisions on aarch64, bit-serial elsewhere
