@@ -48,8 +48,8 @@ static bool nearest_root(rt_real a, rt_real h, rt_real c, rt_real w2, rt_real t_
         t0 = t1;
         t1 = s;
     }
-    if (t0 > t_min && t0 < t_max) { *t = t0; return true; }
-    if (t1 > t_min && t1 < t_max) { *t = t1; return true; }
+    if (t0 > t_min && t0 < t_max && rt_is_finite(t0)) { *t = t0; return true; }
+    if (t1 > t_min && t1 < t_max && rt_is_finite(t1)) { *t = t1; return true; }
     return false;
 }
 
@@ -102,7 +102,7 @@ bool rt_intersect_cylinder(rt_vec3 o, rt_vec3 d, rt_real t_min, rt_real t_max, r
         for (int top = 0; top < 2; top++) {
             rt_real y = top ? RT_C(0.5) : RT_C(-0.5);
             t = rt_div(rt_sub(y, o.y), d.y);
-            if (!(t > t_min && t < best)) continue;
+            if (!(t > t_min && t < best) || !rt_is_finite(t)) continue;
             rt_real x = rt_add(o.x, rt_mul(t, d.x)), z = rt_add(o.z, rt_mul(t, d.z));
             if (rt_add(rt_mul(x, x), rt_mul(z, z)) <= RT_C(0.25)) {
                 best = t;
@@ -144,7 +144,8 @@ bool rt_intersect_triangle(const rt_ray_setup *rs, rt_vec3 a, rt_vec3 b, rt_vec3
     rt_real extent_y = rt_add(rt_add(rt_abs(ay), rt_abs(by)), rt_abs(cy));
     if (rt_abs(det) <= rt_mul(rt_mul(extent_x, extent_y), RT_C(1e-12))) return false;
     rt_real t = rt_dot3_div(u, rt_mul(rs->sz, az), v, rt_mul(rs->sz, bz), w, rt_mul(rs->sz, cz), det);
-    if (!(t > rs->ray.t_min && t < rs->ray.t_max)) return false;
+    /* A saturated t (Q32.32) is an overflow, not a distance, whatever the interval says. */
+    if (!(t > rs->ray.t_min && t < rs->ray.t_max) || !rt_is_finite(t)) return false;
     hit->t = t;
     hit->b1 = rt_div(v, det);
     hit->b2 = rt_div(w, det);

@@ -9,7 +9,11 @@ static rt_surface triangle_surface(const rt_scene *scene, const rt_scene_hit *hi
     rt_real b1 = hit->hit.b1, b2 = hit->hit.b2, b0 = rt_sub(rt_sub(RT_ONE, b1), b2);
     const rt_vec3 *p = scene->positions;
     rt_vec3 pa = p[tri->v[0]], pb = p[tri->v[1]], pc = p[tri->v[2]];
-    s.geometric_normal = rt_v3_normalize(rt_v3_cross(rt_v3_sub(pb, pa), rt_v3_sub(pc, pa)));
+    /* Each edge is scaled by a power of two first: the normal's direction is the same (and
+     * exactly so in double), where in Q32.32 a sliver's cross product could round to 0. */
+    int ka, kb;
+    rt_vec3 e1 = rt_v3_rescale(rt_v3_sub(pb, pa), &ka), e2 = rt_v3_rescale(rt_v3_sub(pc, pa), &kb);
+    s.geometric_normal = rt_v3_normalize(rt_v3_cross(e1, e2));
     const rt_vec3 *n = scene->normals;
     rt_vec3 interpolated = rt_v3_add(rt_v3_add(rt_v3_scale(n[tri->v[0]], b0), rt_v3_scale(n[tri->v[1]], b1)),
                                      rt_v3_scale(n[tri->v[2]], b2));

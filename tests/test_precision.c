@@ -3,7 +3,11 @@
 #include <criterion/criterion.h>
 #include <math.h>
 
+#include <stdlib.h>
+
+#include "arena.h"
 #include "intersect.h"
+#include "surface.h"
 #include "vec.h"
 
 /* The build's unit roundoff, for bounds that scale with it. */
@@ -128,4 +132,46 @@ Test(precision, bounds_round_outwards_by_at_most_one_step)
                       limits[l], rt_to_double(x), rt_to_double(lo), rt_to_double(hi));
         }
     }
+}
+
+/* fuzz_triangle (CI, fixed build): a sliver 2e-3 by 7.6e-6 whose cross product, 5.8e-11
+ * in y, rounds to 0 in Q32.32, so the smooth normals and the geometric normal were all
+ * zero. The geometric normal now takes the cross product of the edges scaled by powers
+ * of two, which keeps its direction (exactly, in double). */
+Test(precision, a_slivers_normals_are_unit_length)
+{
+    static const uint32_t idx[3] = {0, 1, 2};
+    rt_vec3 pos[3] = {v3d(0.25, 0.25, 0.25), v3d(0.24999237060546875, 0.25, 0.24804684519767761),
+                      v3d(0.25, 0.25, 0.24999237060546875)};
+    rt_mesh_desc mesh = {pos, NULL, NULL, 3, idx, 1};
+    rt_material material = {.diffuse = {.texture = RT_NO_TEXTURE}, .specular = {.texture = RT_NO_TEXTURE},
+                            .emissive = {.texture = RT_NO_TEXTURE}, .transmittance = {.texture = RT_NO_TEXTURE},
+                            .index_of_refraction = RT_ONE};
+    rt_object_desc obj = {.kind = RT_SHAPE_MESH, .world = rt_affine_identity()};
+    rt_scene_desc d = {0};
+    d.materials = &material;
+    d.material_count = 1;
+    d.meshes = &mesh;
+    d.mesh_count = 1;
+    d.objects = &obj;
+    d.object_count = 1;
+    d.camera.world = rt_affine_identity();
+    d.camera.fov_degrees = RT_C(50.0);
+    d.camera.width = d.camera.height = 4;
+    size_t size = 1 << 20;
+    void *memory = malloc(size);
+    rt_arena arena;
+    rt_arena_init(&arena, memory, size);
+    rt_scene scene;
+    rt_build_error err;
+    cr_assert_eq(rt_scene_build(&d, &arena, &scene, &err), RT_OK, "%s", err.what);
+    rt_ray ray = {v3d(0.2499, 1.0, 0.2495), v3d(0, -1, 0), RT_HIT_EPSILON, RT_REAL_MAX};
+    rt_scene_hit hit = {0};
+    hit.prim = 0;
+    hit.hit.t = RT_C(0.75);
+    rt_surface surf = rt_surface_at(&scene, &ray, &hit);
+    long double gn = len_of(surf.geometric_normal), n = len_of(surf.normal);
+    cr_assert(fabsl(gn - 1) <= 1e-8L && fabsl(n - 1) <= 1e-8L, "normal lengths %.17Lg, %.17Lg", gn, n);
+    cr_assert(rt_to_double(surf.geometric_normal.y) < -0.999999, "the sliver lies in y = 0.25, wound towards -y");
+    free(memory);
 }
