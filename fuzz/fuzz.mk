@@ -8,6 +8,9 @@
 FUZZ_CC ?= clang
 FUZZ_SECONDS ?= 20
 FUZZ_JOBS ?= 2
+# libFuzzer's random seed: fixed, so a run (in CI too) can be replayed exactly; 0 draws
+# a new one each run, for exploring (make fuzz FUZZ_SEED=0 FUZZ_SECONDS=600).
+FUZZ_SEED ?= 1
 FUZZ_BUILD := build-fuzz
 FUZZ_SAN := -fsanitize=address,undefined -fno-sanitize-recover=all
 FUZZ_PARSERS := fuzz_yaml fuzz_ply fuzz_png
@@ -77,7 +80,7 @@ fuzz-build-run: fuzz-deps
 # Each target runs on a scratch copy of its seed corpus; any crash, leak, sanitizer
 # report or broken invariant fails the run and leaves the input in the scratch folder.
 fuzz: fuzz-build-run
-	fuzz/run.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_JOBS) $(call fuzz_bins,$(FUZZ_RUN_VARIANTS))
+	FUZZ_SEED=$(FUZZ_SEED) fuzz/run.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_JOBS) $(call fuzz_bins,$(FUZZ_RUN_VARIANTS))
 
 fuzz-clean:
 	rm -rf $(FUZZ_BUILD) build-asan build-asan-fixed

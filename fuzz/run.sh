@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs libFuzzer binaries for a fixed time each, JOBS at a time, every one on a
 # scratch copy of fuzz/corpus/<target>/ (the repository is never written to).
-# Usage: fuzz/run.sh BUILD_DIR SECONDS JOBS BINARY...
+# Usage: [FUZZ_SEED=N] fuzz/run.sh BUILD_DIR SECONDS JOBS BINARY...   (seed 0 or unset: random)
 # Prints one line per run (executions, coverage, verdict); exits 1 if any run failed,
 # leaving its log and crashing input under BUILD_DIR/run/<variant>/<target>/.
 set -euo pipefail
@@ -16,7 +16,7 @@ if [ "${1:-}" = --one ]; then
     dict=()
     if [ -f "fuzz/dict/$name.dict" ]; then dict=(-dict="fuzz/dict/$name.dict"); fi
     status=ok
-    "$bin" -max_total_time="$seconds" -timeout=30 -rss_limit_mb=2048 -print_final_stats=1 \
+    "$bin" -max_total_time="$seconds" -timeout=30 -rss_limit_mb=2048 -print_final_stats=1 -seed="${FUZZ_SEED:-0}" \
         -artifact_prefix="$dir/" "${dict[@]}" "$dir/corpus" >"$dir/log" 2>&1 || status=FAILED
     execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$dir/log")
     cov=$(grep -o 'cov: [0-9]*' "$dir/log" | tail -1 || true)
