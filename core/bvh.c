@@ -34,15 +34,20 @@ static rt_real aabb_half_area(rt_aabb b)
     return rt_add(rt_add(rt_mul(e.x, e.y), rt_mul(e.y, e.z)), rt_mul(e.z, e.x));
 }
 
+/* The largest absolute coordinate of a box's corners. */
+static rt_real aabb_magnitude(rt_aabb b)
+{
+    rt_vec3 extent = rt_v3_max(rt_v3(rt_abs(b.lo.x), rt_abs(b.lo.y), rt_abs(b.lo.z)),
+                               rt_v3(rt_abs(b.hi.x), rt_abs(b.hi.y), rt_abs(b.hi.z)));
+    return rt_max(rt_max(extent.x, extent.y), extent.z);
+}
+
 /* Widens a box by 2^-20 of its magnitude (plus 2^-20 absolute) so that slab-test and
  * intersection rounding never cull a primitive's true hit: ample for double, and many
  * lsb for Q32.32. A wider box only costs a few extra tests. */
 static rt_aabb aabb_pad(rt_aabb b)
 {
-    rt_vec3 extent = rt_v3_max(rt_v3(rt_abs(b.lo.x), rt_abs(b.lo.y), rt_abs(b.lo.z)),
-                               rt_v3(rt_abs(b.hi.x), rt_abs(b.hi.y), rt_abs(b.hi.z)));
-    rt_real m = rt_max(rt_max(extent.x, extent.y), extent.z);
-    rt_real pad = rt_mul(rt_add(m, RT_ONE), RT_C(0.00000095367431640625));
+    rt_real pad = rt_mul(rt_add(aabb_magnitude(b), RT_ONE), RT_C(0.00000095367431640625));
     rt_vec3 p = rt_v3(pad, pad, pad);
     rt_aabb r = {rt_v3_sub(b.lo, p), rt_v3_add(b.hi, p)};
     return r;
@@ -254,9 +259,7 @@ rt_status rt_bvh_build(rt_scene *scene, rt_arena *arena)
         root.bounds = aabb_union(root.bounds, refs[i].bounds);
         root.centroids = aabb_add_point(root.centroids, centroid_of(&refs[i]));
     }
-    rt_vec3 lo = root.bounds.lo, hi = root.bounds.hi;
-    bvh->grid = rt_bound_grid(rt_max(rt_max(rt_max(rt_abs(lo.x), rt_abs(lo.y)), rt_max(rt_abs(lo.z), rt_abs(hi.x))),
-                                     rt_max(rt_abs(hi.y), rt_abs(hi.z))));
+    bvh->grid = rt_bound_grid(aabb_magnitude(root.bounds));
     bvh->node_count = 1;
     bvh->depth = 1;
     store_box(&bvh->nodes[0], aabb_empty(), bvh->grid);

@@ -56,6 +56,15 @@ static void random_scene(rt_scene *s, void **memory, uint32_t triangles, uint32_
     free(objs);
 }
 
+/* A ray from inside [-15, 15]^3 in a random direction, over (epsilon, infinity). */
+static rt_ray random_ray(void)
+{
+    rt_vec3 o = rt_v3(next_range(-15, 15), next_range(-15, 15), next_range(-15, 15));
+    rt_vec3 d = rt_v3_normalize(rt_v3(next_range(-1, 1), next_range(-1, 1), next_range(-1, 1)));
+    rt_ray r = {o, d, RT_HIT_EPSILON, RT_REAL_MAX};
+    return r;
+}
+
 Test(bvh, nearest_hit_equals_brute_force)
 {
     lcg_state = 42;
@@ -66,9 +75,7 @@ Test(bvh, nearest_hit_equals_brute_force)
     cr_assert_leq(s.bvh.depth, RT_BVH_MAX_DEPTH);
     int hits = 0;
     for (int i = 0; i < 20000; i++) {
-        rt_vec3 o = rt_v3(next_range(-15, 15), next_range(-15, 15), next_range(-15, 15));
-        rt_vec3 d = rt_v3_normalize(rt_v3(next_range(-1, 1), next_range(-1, 1), next_range(-1, 1)));
-        rt_ray r = {o, d, RT_HIT_EPSILON, RT_REAL_MAX};
+        rt_ray r = random_ray();
         rt_ray_setup rs = rt_ray_prepare(r);
         rt_scene_hit a, b;
         bool ha = rt_scene_nearest(&s, &rs, true, &a), hb = rt_scene_nearest(&s, &rs, false, &b);
@@ -92,9 +99,8 @@ Test(bvh, any_hit_agrees_with_nearest)
     random_scene(&s, &memory, 2000, 50);
     int hits = 0, misses = 0;
     for (int i = 0; i < 20000; i++) {
-        rt_vec3 o = rt_v3(next_range(-15, 15), next_range(-15, 15), next_range(-15, 15));
-        rt_vec3 d = rt_v3_normalize(rt_v3(next_range(-1, 1), next_range(-1, 1), next_range(-1, 1)));
-        rt_ray r = {o, d, RT_HIT_EPSILON, i % 4 == 0 ? RT_REAL_MAX : next_range(0.01, 20)};
+        rt_ray r = random_ray();
+        if (i % 4 != 0) r.t_max = next_range(0.01, 20);
         if (i % 7 == 0) r.direction.y = 0; /* a zero component: the general slab test */
         rt_ray_setup rs = rt_ray_prepare(r);
         rt_scene_hit h;
