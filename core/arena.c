@@ -10,9 +10,12 @@ void rt_arena_init(rt_arena *a, void *memory, size_t capacity)
     a->wanted = 0;
 }
 
-void *rt_arena_alloc(rt_arena *a, size_t size)
+void *rt_arena_alloc(rt_arena *a, size_t size) { return rt_arena_alloc_aligned(a, size, 16); }
+
+void *rt_arena_alloc_aligned(rt_arena *a, size_t size, size_t align)
 {
-    size_t start = (a->used + 15u) & ~(size_t)15u;
+    size_t misalign = ((uintptr_t)a->base + a->used) & (align - 1);
+    size_t start = a->used + (misalign ? align - misalign : 0);
     if (start < a->used || size > SIZE_MAX - start || start + size > a->capacity) {
         a->wanted = size > SIZE_MAX - start ? SIZE_MAX : start + size;
         return NULL;

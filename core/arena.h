@@ -18,6 +18,8 @@ typedef struct {
 void rt_arena_init(rt_arena *a, void *memory, size_t capacity);
 /* size bytes aligned to 16, or NULL when the arena is full (a->wanted is set). */
 void *rt_arena_alloc(rt_arena *a, size_t size);
+/* size bytes at an address that is a multiple of align (a power of two), or NULL. */
+void *rt_arena_alloc_aligned(rt_arena *a, size_t size, size_t align);
 /* count * size bytes, zeroed; NULL on overflow of the product or when full. */
 void *rt_arena_array(rt_arena *a, size_t count, size_t size);
 /* Marks for scratch use: everything allocated after the mark is released by reset. */

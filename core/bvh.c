@@ -71,13 +71,27 @@ rt_aabb rt_prim_bounds(const rt_scene *scene, uint32_t prim)
     return aabb_pad(b);
 }
 
+static bool quadric_intersect(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs, rt_prim_hit *hit);
+
+/* Inline in the BVH's leaf loop, where a triangle test is most of the work; kx, ky, kz
+ * are rs's axis permutation (see rt_intersect_triangle_axes). */
+__attribute__((always_inline)) static inline bool prim_intersect(const rt_scene *scene, uint32_t prim,
+                                                                 const rt_ray_setup *rs, rt_prim_hit *hit, int kx,
+                                                                 int ky, int kz)
+{
+    if (prim >= scene->triangle_count) return quadric_intersect(scene, prim, rs, hit);
+    const rt_triangle *tri = &scene->triangles[prim];
+    return rt_intersect_triangle_axes(rs, scene->positions[tri->v[0]], scene->positions[tri->v[1]],
+                                      scene->positions[tri->v[2]], hit, kx, ky, kz);
+}
+
 bool rt_prim_intersect(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs, rt_prim_hit *hit)
 {
-    if (prim < scene->triangle_count) {
-        const rt_triangle *tri = &scene->triangles[prim];
-        return rt_intersect_triangle(rs, scene->positions[tri->v[0]], scene->positions[tri->v[1]],
-                                     scene->positions[tri->v[2]], hit);
-    }
+    return prim_intersect(scene, prim, rs, hit, rs->kx, rs->ky, rs->kz);
+}
+
+static bool quadric_intersect(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs, rt_prim_hit *hit)
+{
     const rt_object *obj = &scene->objects[scene->quadric_objects[prim - scene->triangle_count]];
     rt_vec3 o = rt_affine_point(&obj->to_object, rs->ray.origin);
     rt_vec3 d = rt_affine_vector(&obj->to_object, rs->ray.direction);
@@ -238,6 +252,15 @@ rt_aabb rt_bvh_node_box(const rt_bvh *bvh, const rt_bvh_node *node)
     return r;
 }
 
+/* Siblings are nodes (2k + 1, 2k + 2): the array starts one node before a 64-byte
+ * boundary so that each pair a traversal step reads shares one cache line. */
+_Static_assert(2 * sizeof(rt_bvh_node) == 64, "a sibling pair fills one cache line");
+static rt_bvh_node *alloc_nodes(rt_arena *arena, size_t count)
+{
+    uint8_t *line = rt_arena_alloc_aligned(arena, (count + 1) * sizeof(rt_bvh_node), 64);
+    return line ? (rt_bvh_node *)(line + 64 - sizeof(rt_bvh_node)) : NULL;
+}
+
 /* Nodes are made in scratch for the worst case (2n - 1) at the arena's mark, then the
  * arena is reset and only the nodes made are kept there, in place. */
 rt_status rt_bvh_build(rt_scene *scene, rt_arena *arena)
@@ -248,7 +271,7 @@ rt_status rt_bvh_build(rt_scene *scene, rt_arena *arena)
     if (!bvh->prim_refs) return RT_ERR_NOMEM;
     size_t mark = rt_arena_mark(arena);
     /* Every node and reference is written before it is read: no zeroing. */
-    bvh->nodes = rt_arena_alloc(arena, (n > 0 ? 2 * (size_t)n - 1 : 1) * sizeof(rt_bvh_node));
+    bvh->nodes = alloc_nodes(arena, n > 0 ? 2 * (size_t)n - 1 : 1);
     build_ref *refs = n > 0 ? rt_arena_alloc(arena, (size_t)n * sizeof(build_ref)) : NULL;
     build_task *stack = RT_NEW_ARRAY(arena, build_task, RT_BVH_MAX_DEPTH + 2);
     if (!bvh->nodes || (n > 0 && !refs) || !stack) return RT_ERR_NOMEM;
@@ -288,11 +311,19 @@ rt_status rt_bvh_build(rt_scene *scene, rt_arena *arena)
     }
     for (uint32_t i = 0; i < n; i++) bvh->prim_refs[i] = refs[i].prim;
     rt_arena_reset(arena, mark);
-    bvh->nodes = rt_arena_alloc(arena, (size_t)bvh->node_count * sizeof(rt_bvh_node)); /* the same address */
+    bvh->nodes = alloc_nodes(arena, bvh->node_count); /* the same address */
     return RT_OK;
 }
 
 /* ---- Queries ---- */
+
+/* The double build tests a node's two children at once with SSE2 (x86-64's baseline). */
+#if defined(__SSE2__) && !defined(RT_REAL_FIXED)
+#define SLAB_SSE2 1
+#include <emmintrin.h>
+#else
+#define SLAB_SSE2 0
+#endif
 
 /* The slab test of rt_intersect_aabb on a node's stored box, with the per-axis branches
  * decided once per ray: for a non-zero direction component the near plane is lo when it
@@ -308,6 +339,9 @@ typedef struct {
     bool general;
     const rt_ray_setup *rs;
     const rt_bvh *bvh;
+#if SLAB_SSE2
+    __m128d origin2[3], inv2[3], t_min2; /* each value in both lanes */
+#endif
 } slab_ray;
 
 static slab_ray slab_prepare(const rt_ray_setup *rs, const rt_bvh *bvh)
@@ -324,7 +358,14 @@ static slab_ray slab_prepare(const rt_ray_setup *rs, const rt_bvh *bvh)
         bool neg = rt_v3_get(d, k) < RT_ZERO;
         r.near[k] = neg ? 3 + k : k;
         r.far[k] = neg ? k : 3 + k;
+#if SLAB_SSE2
+        r.origin2[k] = _mm_set1_pd(rt_v3_get(o, k));
+        r.inv2[k] = _mm_set1_pd(rt_v3_get(inv, k));
+#endif
     }
+#if SLAB_SSE2
+    r.t_min2 = _mm_set1_pd(r.t_min);
+#endif
     r.general = d.x == RT_ZERO || d.y == RT_ZERO || d.z == RT_ZERO || !rt_is_finite(inv.x) || !rt_is_finite(inv.y) ||
                 !rt_is_finite(inv.z) || !rt_is_finite(o.x) || !rt_is_finite(o.y) || !rt_is_finite(o.z);
     return r;
@@ -349,20 +390,89 @@ __attribute__((always_inline)) static inline bool slab_hit(const slab_ray *r, co
     return !(t0 > t1);
 }
 
-static void consider(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs, rt_scene_hit *best, bool *found)
+#if SLAB_SSE2
+/* slab_hit on both children at once, two doubles per SSE2 register. IEEE arithmetic is
+ * the same packed or scalar; minpd/maxpd are rt_min/rt_max (a < b ? a : b), and the
+ * smaller of a slab's two plane distances is the near plane's (the products are
+ * monotonic), the same value slab_hit reads. */
+__attribute__((always_inline)) static inline unsigned slab_hit_pair_sse2(const slab_ray *r, const rt_bvh_node *pair,
+                                                                         rt_real t_max, rt_real t_enter[2])
+{
+    __m128 a = _mm_loadu_ps(&pair[0].box[0]), b = _mm_loadu_ps(&pair[1].box[0]); /* lo x y z, hi x */
+    /* hi y z, then `first` and `count` read as floats: those two lanes are never converted. */
+    __m128 a_hi = _mm_loadu_ps(&pair[0].box[4]), b_hi = _mm_loadu_ps(&pair[1].box[4]);
+    __m128 lxy = _mm_unpacklo_ps(a, b), lzhx = _mm_unpackhi_ps(a, b), hyz = _mm_unpacklo_ps(a_hi, b_hi);
+    const __m128d *o = r->origin2, *inv = r->inv2;
+    __m128d x0 = _mm_mul_pd(_mm_sub_pd(_mm_cvtps_pd(lxy), o[0]), inv[0]);
+    __m128d y0 = _mm_mul_pd(_mm_sub_pd(_mm_cvtps_pd(_mm_movehl_ps(lxy, lxy)), o[1]), inv[1]);
+    __m128d z0 = _mm_mul_pd(_mm_sub_pd(_mm_cvtps_pd(lzhx), o[2]), inv[2]);
+    __m128d x1 = _mm_mul_pd(_mm_sub_pd(_mm_cvtps_pd(_mm_movehl_ps(lzhx, lzhx)), o[0]), inv[0]);
+    __m128d y1 = _mm_mul_pd(_mm_sub_pd(_mm_cvtps_pd(hyz), o[1]), inv[1]);
+    __m128d z1 = _mm_mul_pd(_mm_sub_pd(_mm_cvtps_pd(_mm_movehl_ps(hyz, hyz)), o[2]), inv[2]);
+    __m128d t0 = _mm_max_pd(_mm_max_pd(_mm_max_pd(r->t_min2, _mm_min_pd(x0, x1)), _mm_min_pd(y0, y1)), _mm_min_pd(z0, z1));
+    __m128d t1 = _mm_min_pd(_mm_min_pd(_mm_min_pd(_mm_set1_pd(t_max), _mm_max_pd(x0, x1)), _mm_max_pd(y0, y1)),
+                            _mm_max_pd(z0, z1));
+    _mm_storeu_pd(t_enter, t0);
+    return (unsigned)_mm_movemask_pd(_mm_cmple_pd(t0, t1));
+}
+#endif
+
+/* Tests both children of an inner node (pair = &nodes[first]): bit k of the result is
+ * set when pair[k] is entered before t_max, at t_enter[k]. */
+__attribute__((always_inline)) static inline unsigned slab_hit_pair(const slab_ray *r, const rt_bvh_node *pair,
+                                                                    rt_real t_max, rt_real t_enter[2])
+{
+#if SLAB_SSE2
+    if (!r->general) return slab_hit_pair_sse2(r, pair, t_max, t_enter);
+#endif
+    return (unsigned)slab_hit(r, &pair[0], t_max, &t_enter[0]) | (unsigned)slab_hit(r, &pair[1], t_max, &t_enter[1]) << 1;
+}
+
+/* Keeps prim's hit in *best if it is nearer, or as near and a lower reference. */
+__attribute__((always_inline)) static inline void consider(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs,
+                                                           rt_scene_hit *best, bool *found, int kx, int ky, int kz)
 {
     rt_prim_hit h;
-    if (!rt_prim_intersect(scene, prim, rs, &h)) return;
+    if (!prim_intersect(scene, prim, rs, &h, kx, ky, kz)) return;
     if (*found && (h.t > best->hit.t || (h.t == best->hit.t && prim > best->prim))) return;
     best->hit = h;
     best->prim = prim;
     *found = true;
 }
 
+__attribute__((always_inline)) static inline bool leaf_loop(const rt_scene *scene, const rt_bvh_node *leaf,
+                                                            const rt_ray_setup *rs, bool any, rt_scene_hit *best,
+                                                            bool *found, int kx, int ky, int kz)
+{
+    const uint32_t *refs = scene->bvh.prim_refs;
+    for (uint32_t i = leaf->first; i < leaf->first + leaf->count; i++) {
+        consider(scene, refs[i], rs, best, found, kx, ky, kz);
+        if (any && *found) break;
+    }
+    return *found;
+}
+
+/* A leaf's primitives, out of line so that the traversal loop keeps its registers, with
+ * one copy of the loop per axis permutation; with `any`, stops at the first hit.
+ * Returns *found. */
+__attribute__((noinline)) static bool visit_leaf(const rt_scene *scene, const rt_bvh_node *leaf, const rt_ray_setup *rs,
+                                                 bool any, rt_scene_hit *best, bool *found)
+{
+    bool swapped = rs->kx != (rs->kz + 1) % 3; /* see rt_ray_prepare */
+    switch (rs->kz * 2 + swapped) {
+    case 0: return leaf_loop(scene, leaf, rs, any, best, found, 1, 2, 0);
+    case 1: return leaf_loop(scene, leaf, rs, any, best, found, 2, 1, 0);
+    case 2: return leaf_loop(scene, leaf, rs, any, best, found, 2, 0, 1);
+    case 3: return leaf_loop(scene, leaf, rs, any, best, found, 0, 2, 1);
+    case 4: return leaf_loop(scene, leaf, rs, any, best, found, 0, 1, 2);
+    default: return leaf_loop(scene, leaf, rs, any, best, found, 1, 0, 2);
+    }
+}
+
 static bool nearest_brute(const rt_scene *scene, const rt_ray_setup *rs, rt_scene_hit *out)
 {
     bool found = false;
-    for (uint32_t p = 0; p < scene->prim_count; p++) consider(scene, p, rs, out, &found);
+    for (uint32_t p = 0; p < scene->prim_count; p++) consider(scene, p, rs, out, &found, rs->kx, rs->ky, rs->kz);
     return found;
 }
 
@@ -390,25 +500,28 @@ static bool nearest_bvh(const rt_scene *scene, const rt_ray_setup *rs, bool any,
         const rt_bvh_node *node = &nodes[e.node];
         /* Descend into the nearer child directly; the farther one waits on the stack. */
         while (node->count == 0) {
-            rt_real limit = found ? out->hit.t : rs->ray.t_max, ta, tb;
-            bool hit_a = slab_hit(&sr, &nodes[node->first], limit, &ta);
-            bool hit_b = slab_hit(&sr, &nodes[node->first + 1], limit, &tb);
-            if (hit_a && hit_b) {
-                bool a_first = ta <= tb;
-                stack[top++] = a_first ? (stack_entry){node->first + 1, tb} : (stack_entry){node->first, ta};
-                node = &nodes[a_first ? node->first : node->first + 1];
-            } else if (hit_a || hit_b) {
-                node = &nodes[hit_a ? node->first : node->first + 1];
+            rt_real limit = found ? out->hit.t : rs->ray.t_max, t[2];
+            uint32_t first = node->first;
+            unsigned hits = slab_hit_pair(&sr, &nodes[first], limit, t);
+            /* Branches, not selects: a predicted branch lets the next node's load start
+             * before this test is done (traversal waits on memory more than on arithmetic). */
+            if (hits == 1) {
+                node = &nodes[first];
+            } else if (hits == 2) {
+                node = &nodes[first + 1];
+            } else if (hits == 3 && t[0] <= t[1]) {
+                stack[top++] = (stack_entry){first + 1, t[1]};
+                node = &nodes[first];
+            } else if (hits == 3) {
+                stack[top++] = (stack_entry){first, t[0]};
+                node = &nodes[first + 1];
             } else {
                 node = NULL;
                 break;
             }
         }
         if (!node) continue;
-        for (uint32_t i = node->first; i < node->first + node->count; i++) {
-            consider(scene, scene->bvh.prim_refs[i], rs, out, &found);
-            if (any && found) return true;
-        }
+        if (visit_leaf(scene, node, rs, any, out, &found) && any) return true;
     }
     return found;
 }

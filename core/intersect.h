@@ -20,9 +20,9 @@ typedef struct {
 bool rt_intersect_sphere(rt_vec3 origin, rt_vec3 direction, rt_real t_min, rt_real t_max, rt_prim_hit *hit);
 /* Capped cylinder: axis Y, radius 0.5, y in [-0.5, 0.5]; object space as above. */
 bool rt_intersect_cylinder(rt_vec3 origin, rt_vec3 direction, rt_real t_min, rt_real t_max, rt_prim_hit *hit);
-/* Watertight triangle test (edges shared by two triangles are hit by at least one). */
-bool rt_intersect_triangle(const rt_ray_setup *rs, rt_vec3 a, rt_vec3 b, rt_vec3 c, rt_prim_hit *hit);
 /* Slab test; returns the entry distance in *t_enter. */
 bool rt_intersect_aabb(const rt_ray_setup *rs, const rt_aabb *box, rt_real t_max, rt_real *t_enter);
+
+#include "intersect_triangle.h"
 
 #endif
