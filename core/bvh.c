@@ -233,48 +233,48 @@ static uint32_t partition(build_ref *refs, uint32_t first, uint32_t count, const
     return i - first;
 }
 
-static void store_box(rt_bvh_node *node, rt_aabb b, int grid)
+/* A node of the binary tree the SAH builds, in scratch, before it is collapsed into the
+ * 4-wide tree: its box as stored, and children nodes[first], nodes[first + 1] (count 0)
+ * or references prim_refs[first .. first + count). */
+typedef struct {
+    rt_bound box[6];
+    uint32_t first, count;
+} bin_node;
+
+static void store_box(rt_bound box[6], rt_aabb b, int grid)
 {
-    node->box[0] = rt_bound_below(b.lo.x, grid);
-    node->box[1] = rt_bound_below(b.lo.y, grid);
-    node->box[2] = rt_bound_below(b.lo.z, grid);
-    node->box[3] = rt_bound_above(b.hi.x, grid);
-    node->box[4] = rt_bound_above(b.hi.y, grid);
-    node->box[5] = rt_bound_above(b.hi.z, grid);
+    box[0] = rt_bound_below(b.lo.x, grid);
+    box[1] = rt_bound_below(b.lo.y, grid);
+    box[2] = rt_bound_below(b.lo.z, grid);
+    box[3] = rt_bound_above(b.hi.x, grid);
+    box[4] = rt_bound_above(b.hi.y, grid);
+    box[5] = rt_bound_above(b.hi.z, grid);
 }
 
-rt_aabb rt_bvh_node_box(const rt_bvh *bvh, const rt_bvh_node *node)
+static rt_aabb stored_box(rt_bound lo_x, rt_bound lo_y, rt_bound lo_z, rt_bound hi_x, rt_bound hi_y, rt_bound hi_z,
+                          int g)
 {
-    const rt_bound *b = node->box;
-    int g = bvh->grid;
-    rt_aabb r = {rt_v3(rt_bound_value(b[0], g), rt_bound_value(b[1], g), rt_bound_value(b[2], g)),
-                 rt_v3(rt_bound_value(b[3], g), rt_bound_value(b[4], g), rt_bound_value(b[5], g))};
+    rt_aabb r = {rt_v3(rt_bound_value(lo_x, g), rt_bound_value(lo_y, g), rt_bound_value(lo_z, g)),
+                 rt_v3(rt_bound_value(hi_x, g), rt_bound_value(hi_y, g), rt_bound_value(hi_z, g))};
     return r;
 }
 
-/* Siblings are nodes (2k + 1, 2k + 2): the array starts one node before a 64-byte
- * boundary so that each pair a traversal step reads shares one cache line. */
-_Static_assert(2 * sizeof(rt_bvh_node) == 64, "a sibling pair fills one cache line");
-static rt_bvh_node *alloc_nodes(rt_arena *arena, size_t count)
+rt_aabb rt_bvh_child_box(const rt_bvh *bvh, const rt_bvh_node *node, int c)
 {
-    uint8_t *line = rt_arena_alloc_aligned(arena, (count + 1) * sizeof(rt_bvh_node), 64);
-    return line ? (rt_bvh_node *)(line + 64 - sizeof(rt_bvh_node)) : NULL;
+    return stored_box(node->box[0][c], node->box[1][c], node->box[2][c], node->box[3][c], node->box[4][c],
+                      node->box[5][c], bvh->grid);
 }
 
-/* Nodes are made in scratch for the worst case (2n - 1) at the arena's mark, then the
- * arena is reset and only the nodes made are kept there, in place. */
-rt_status rt_bvh_build(rt_scene *scene, rt_arena *arena)
+static rt_aabb bin_box(const bin_node *n, int g)
 {
-    uint32_t n = scene->prim_count;
-    rt_bvh *bvh = &scene->bvh;
-    bvh->prim_refs = RT_NEW_ARRAY(arena, uint32_t, n > 0 ? n : 1);
-    if (!bvh->prim_refs) return RT_ERR_NOMEM;
-    size_t mark = rt_arena_mark(arena);
-    /* Every node and reference is written before it is read: no zeroing. */
-    bvh->nodes = alloc_nodes(arena, n > 0 ? 2 * (size_t)n - 1 : 1);
-    build_ref *refs = n > 0 ? rt_arena_alloc(arena, (size_t)n * sizeof(build_ref)) : NULL;
-    build_task *stack = RT_NEW_ARRAY(arena, build_task, RT_BVH_MAX_DEPTH + 2);
-    if (!bvh->nodes || (n > 0 && !refs) || !stack) return RT_ERR_NOMEM;
+    return stored_box(n->box[0], n->box[1], n->box[2], n->box[3], n->box[4], n->box[5], g);
+}
+
+/* Builds the binary SAH tree over n > 0 references into bin (room for 2n - 1 nodes);
+ * returns its node count. refs end up in leaf order. */
+static uint32_t build_binary(const rt_scene *scene, build_ref *refs, uint32_t n, bin_node *bin, build_task *stack,
+                             int *grid)
+{
     build_task root = {0, 0, n, 1, aabb_empty(), aabb_empty()};
     for (uint32_t i = 0; i < n; i++) {
         refs[i].bounds = rt_prim_bounds(scene, i);
@@ -282,50 +282,185 @@ rt_status rt_bvh_build(rt_scene *scene, rt_arena *arena)
         root.bounds = aabb_union(root.bounds, refs[i].bounds);
         root.centroids = aabb_add_point(root.centroids, centroid_of(&refs[i]));
     }
-    bvh->grid = rt_bound_grid(aabb_magnitude(root.bounds));
-    bvh->node_count = 1;
-    bvh->depth = 1;
-    store_box(&bvh->nodes[0], aabb_empty(), bvh->grid);
-    bvh->nodes[0].first = 0;
-    bvh->nodes[0].count = 0;
-    uint32_t top = 0;
-    if (n > 0) stack[top++] = root;
+    *grid = rt_bound_grid(aabb_magnitude(root.bounds));
+    uint32_t count = 1, top = 0;
+    stack[top++] = root;
     while (top > 0) {
         build_task task = stack[--top];
-        rt_bvh_node *node = &bvh->nodes[task.node];
-        store_box(node, task.bounds, bvh->grid);
+        bin_node *node = &bin[task.node];
+        store_box(node->box, task.bounds, *grid);
         node->first = task.first;
         node->count = task.count;
-        if (task.depth > bvh->depth) bvh->depth = task.depth;
         split s;
         if (task.count <= LEAF_MIN || task.depth >= RT_BVH_MAX_DEPTH || !choose_split(refs, &task, &s)) continue;
         rt_aabb left_c, right_c;
         uint32_t left_n = partition(refs, task.first, task.count, &s, &left_c, &right_c);
-        uint32_t left = bvh->node_count;
-        bvh->node_count += 2;
+        uint32_t left = count;
+        count += 2;
         node->first = left;
         node->count = 0;
         /* Push right first so the left subtree is built next (depth-first, bounded stack). */
         stack[top++] = (build_task){left + 1, task.first + left_n, task.count - left_n, task.depth + 1, s.right, right_c};
         stack[top++] = (build_task){left, task.first, left_n, task.depth + 1, s.left, left_c};
     }
+    return count;
+}
+
+/* Up to RT_BVH_WIDTH binary nodes that together cover binary node b's references: its
+ * children, then repeatedly the largest-area inner one replaced by its own two. */
+static int gather_children(const bin_node *bin, uint32_t b, int grid, uint32_t out[RT_BVH_WIDTH])
+{
+    if (bin[b].count > 0) {
+        out[0] = b; /* a leaf root: one leaf child */
+        return 1;
+    }
+    int n = 2;
+    out[0] = bin[b].first;
+    out[1] = bin[b].first + 1;
+    while (n < RT_BVH_WIDTH) {
+        int widest = -1;
+        rt_real widest_area = RT_ZERO;
+        for (int c = 0; c < n; c++) {
+            rt_real area = aabb_half_area(bin_box(&bin[out[c]], grid));
+            if (bin[out[c]].count == 0 && (widest < 0 || area > widest_area)) widest = c, widest_area = area;
+        }
+        if (widest < 0) break;
+        uint32_t opened = out[widest];
+        out[widest] = bin[opened].first;
+        out[n++] = bin[opened].first + 1;
+    }
+    return n;
+}
+
+static void clear_slot(rt_bvh_node *node, int c, int grid)
+{
+    rt_bound empty[6];
+    store_box(empty, aabb_empty(), grid);
+    for (int k = 0; k < 6; k++) node->box[k][c] = empty[k];
+    node->child[c] = 0;
+    node->count[c] = RT_BVH_NO_CHILD;
+}
+
+/* Collapses the binary tree into wide nodes at `wide` (room for one per binary inner
+ * node, and one); returns the wide node count. Nodes are numbered depth first. */
+typedef struct {
+    uint32_t bin, wide, depth;
+} collapse_task;
+
+/* Each wide level pushes at most RT_BVH_WIDTH tasks, over at most RT_BVH_MAX_DEPTH levels. */
+#define COLLAPSE_STACK (RT_BVH_MAX_DEPTH * RT_BVH_WIDTH + 1)
+
+static uint32_t collapse(const bin_node *bin, int grid, rt_bvh_node *wide, collapse_task *stack, uint32_t *depth)
+{
+    uint32_t top = 0, count = 1;
+    stack[top++] = (collapse_task){0, 0, 1};
+    *depth = 1;
+    while (top > 0) {
+        collapse_task t = stack[--top];
+        rt_bvh_node *node = &wide[t.wide];
+        uint32_t kids[RT_BVH_WIDTH];
+        int n = gather_children(bin, t.bin, grid, kids);
+        for (int c = RT_BVH_WIDTH - 1; c >= 0; c--) {
+            if (c >= n) {
+                clear_slot(node, c, grid);
+                continue;
+            }
+            const bin_node *kid = &bin[kids[c]];
+            for (int k = 0; k < 6; k++) node->box[k][c] = kid->box[k];
+            if (t.depth + 1 > *depth) *depth = t.depth + 1;
+            node->count[c] = kid->count;
+            if (kid->count > 0) {
+                node->child[c] = kid->first;
+                continue;
+            }
+            node->child[c] = count;
+            stack[top++] = (collapse_task){kids[c], count++, t.depth + 1};
+        }
+    }
+    return count;
+}
+
+/* The wide nodes start on a 64-byte boundary: each is two whole cache lines. */
+static rt_bvh_node *alloc_nodes(rt_arena *arena, size_t count)
+{
+    return rt_arena_alloc_aligned(arena, count * sizeof(rt_bvh_node), 64);
+}
+
+/* The binary tree and the wide one are made in scratch above the arena's mark; then the
+ * arena is reset and the wide nodes are copied down to the mark, at their final size. */
+rt_status rt_bvh_build(rt_scene *scene, rt_arena *arena)
+{
+    uint32_t n = scene->prim_count;
+    rt_bvh *bvh = &scene->bvh;
+    bvh->prim_refs = RT_NEW_ARRAY(arena, uint32_t, n > 0 ? n : 1);
+    if (!bvh->prim_refs) return RT_ERR_NOMEM;
+    size_t mark = rt_arena_mark(arena);
+    uint32_t bin_count = 1;
+    bvh->grid = rt_bound_grid(RT_ONE);
+    /* Every node and reference is written before it is read: no zeroing. */
+    bin_node *bin = rt_arena_alloc(arena, (n > 0 ? 2 * (size_t)n - 1 : 1) * sizeof(bin_node));
+    build_ref *refs = n > 0 ? rt_arena_alloc(arena, (size_t)n * sizeof(build_ref)) : NULL;
+    build_task *stack = RT_NEW_ARRAY(arena, build_task, RT_BVH_MAX_DEPTH + 2);
+    if (!bin || (n > 0 && !refs) || !stack) return RT_ERR_NOMEM;
+    if (n > 0) {
+        bin_count = build_binary(scene, refs, n, bin, stack, &bvh->grid);
+    } else { /* an empty leaf: the root gets no children */
+        store_box(bin[0].box, aabb_empty(), bvh->grid);
+        bin[0].first = bin[0].count = 0;
+    }
     for (uint32_t i = 0; i < n; i++) bvh->prim_refs[i] = refs[i].prim;
+    /* At most one wide node per binary inner node, or one. */
+    rt_bvh_node *wide = alloc_nodes(arena, bin_count / 2 + 1);
+    collapse_task *tasks = RT_NEW_ARRAY(arena, collapse_task, COLLAPSE_STACK);
+    if (!wide || !tasks) return RT_ERR_NOMEM;
+    uint32_t depth;
+    bvh->node_count = n > 0 ? collapse(bin, bvh->grid, wide, tasks, &depth) : 1;
+    if (n == 0) {
+        depth = 1;
+        for (int c = 0; c < RT_BVH_WIDTH; c++) clear_slot(wide, c, bvh->grid);
+    }
+    bvh->depth = depth;
     rt_arena_reset(arena, mark);
-    bvh->nodes = alloc_nodes(arena, bvh->node_count); /* the same address */
+    bvh->nodes = alloc_nodes(arena, bvh->node_count);
+    /* Below the scratch copy, which starts past the binary tree: a forward copy never
+     * overwrites a node it has yet to read. */
+    for (uint32_t i = 0; i < bvh->node_count; i++) bvh->nodes[i] = wide[i];
     return RT_OK;
 }
 
 /* ---- Queries ---- */
 
-/* The double build tests a node's two children at once with SSE2 (x86-64's baseline). */
+/* The double build tests a node's four children two at a time with SSE2 (x86-64's
+ * baseline); the fixed build and other targets test them one by one. The SSE2
+ * operations are the compilers' own builtins (the core includes no intrinsics header). */
 #if defined(__SSE2__) && !defined(RT_REAL_FIXED)
 #define SLAB_SSE2 1
-#include <emmintrin.h>
+typedef double v2df __attribute__((vector_size(16)));
+typedef float v4sf __attribute__((vector_size(16), aligned(4), may_alias));
+typedef uint32_t v4su __attribute__((vector_size(16), aligned(4), may_alias));
+
+/* Lanes 0, 1 (lo) or 2, 3 (hi) of four floats, as doubles: one cvtps2pd either way. */
+static inline v2df v2df_from_lo(v4sf a)
+{
+#ifdef __clang__
+    return __builtin_convertvector(__builtin_shufflevector(a, a, 0, 1), v2df);
+#else
+    return __builtin_ia32_cvtps2pd(a);
+#endif
+}
+static inline v2df v2df_from_hi(v4sf a)
+{
+#ifdef __clang__
+    return __builtin_convertvector(__builtin_shufflevector(a, a, 2, 3), v2df);
+#else
+    return __builtin_ia32_cvtps2pd(__builtin_ia32_movhlps(a, a));
+#endif
+}
 #else
 #define SLAB_SSE2 0
 #endif
 
-/* The slab test of rt_intersect_aabb on a node's stored box, with the per-axis branches
+/* The slab test of rt_intersect_aabb on a child's stored box, with the per-axis branches
  * decided once per ray: for a non-zero direction component the near plane is lo when it
  * is positive and hi when negative (the products are monotonic in the plane, so this is
  * the swap the general test makes), and without NaN the three axes can be clamped before
@@ -334,13 +469,13 @@ rt_status rt_bvh_build(rt_scene *scene, rt_arena *arena)
 typedef struct {
     rt_vec3 origin, inv;
     rt_real t_min;
-    int near[3], far[3]; /* each axis' near and far plane in rt_bvh_node.box */
+    int near[3], far[3]; /* each axis' near and far plane: a row of rt_bvh_node.box */
     int grid;
     bool general;
     const rt_ray_setup *rs;
     const rt_bvh *bvh;
 #if SLAB_SSE2
-    __m128d origin2[3], inv2[3], t_min2; /* each value in both lanes */
+    v2df origin2[3], inv2[3], t_min2; /* each value in both lanes */
 #endif
 } slab_ray;
 
@@ -359,31 +494,33 @@ static slab_ray slab_prepare(const rt_ray_setup *rs, const rt_bvh *bvh)
         r.near[k] = neg ? 3 + k : k;
         r.far[k] = neg ? k : 3 + k;
 #if SLAB_SSE2
-        r.origin2[k] = _mm_set1_pd(rt_v3_get(o, k));
-        r.inv2[k] = _mm_set1_pd(rt_v3_get(inv, k));
+        r.origin2[k] = (v2df){rt_v3_get(o, k), rt_v3_get(o, k)};
+        r.inv2[k] = (v2df){rt_v3_get(inv, k), rt_v3_get(inv, k)};
 #endif
     }
 #if SLAB_SSE2
-    r.t_min2 = _mm_set1_pd(r.t_min);
+    r.t_min2 = (v2df){r.t_min, r.t_min};
 #endif
     r.general = d.x == RT_ZERO || d.y == RT_ZERO || d.z == RT_ZERO || !rt_is_finite(inv.x) || !rt_is_finite(inv.y) ||
                 !rt_is_finite(inv.z) || !rt_is_finite(o.x) || !rt_is_finite(o.y) || !rt_is_finite(o.z);
     return r;
 }
 
-__attribute__((always_inline)) static inline bool slab_hit(const slab_ray *r, const rt_bvh_node *node, rt_real t_max, rt_real *t_enter)
+/* Child c of `node`: entered before t_max, at *t_enter? */
+static inline bool slab_hit(const slab_ray *r, const rt_bvh_node *node, int c, rt_real t_max, rt_real *t_enter)
 {
     if (r->general) {
-        rt_aabb box = rt_bvh_node_box(r->bvh, node);
+        rt_aabb box = rt_bvh_child_box(r->bvh, node, c);
         return rt_intersect_aabb(r->rs, &box, t_max, t_enter);
     }
-    const rt_bound *b = node->box;
-    rt_real x0 = rt_mul(rt_sub(rt_bound_value(b[r->near[0]], r->grid), r->origin.x), r->inv.x);
-    rt_real x1 = rt_mul(rt_sub(rt_bound_value(b[r->far[0]], r->grid), r->origin.x), r->inv.x);
-    rt_real y0 = rt_mul(rt_sub(rt_bound_value(b[r->near[1]], r->grid), r->origin.y), r->inv.y);
-    rt_real y1 = rt_mul(rt_sub(rt_bound_value(b[r->far[1]], r->grid), r->origin.y), r->inv.y);
-    rt_real z0 = rt_mul(rt_sub(rt_bound_value(b[r->near[2]], r->grid), r->origin.z), r->inv.z);
-    rt_real z1 = rt_mul(rt_sub(rt_bound_value(b[r->far[2]], r->grid), r->origin.z), r->inv.z);
+    const rt_bound(*b)[RT_BVH_WIDTH] = node->box;
+    int g = r->grid;
+    rt_real x0 = rt_mul(rt_sub(rt_bound_value(b[r->near[0]][c], g), r->origin.x), r->inv.x);
+    rt_real x1 = rt_mul(rt_sub(rt_bound_value(b[r->far[0]][c], g), r->origin.x), r->inv.x);
+    rt_real y0 = rt_mul(rt_sub(rt_bound_value(b[r->near[1]][c], g), r->origin.y), r->inv.y);
+    rt_real y1 = rt_mul(rt_sub(rt_bound_value(b[r->far[1]][c], g), r->origin.y), r->inv.y);
+    rt_real z0 = rt_mul(rt_sub(rt_bound_value(b[r->near[2]][c], g), r->origin.z), r->inv.z);
+    rt_real z1 = rt_mul(rt_sub(rt_bound_value(b[r->far[2]][c], g), r->origin.z), r->inv.z);
     rt_real t0 = rt_max(rt_max(rt_max(r->t_min, x0), y0), z0);
     rt_real t1 = rt_min(rt_min(rt_min(t_max, x1), y1), z1);
     *t_enter = t0;
@@ -391,41 +528,56 @@ __attribute__((always_inline)) static inline bool slab_hit(const slab_ray *r, co
 }
 
 #if SLAB_SSE2
-/* slab_hit on both children at once, two doubles per SSE2 register. IEEE arithmetic is
- * the same packed or scalar; minpd/maxpd are rt_min/rt_max (a < b ? a : b), and the
- * smaller of a slab's two plane distances is the near plane's (the products are
- * monotonic), the same value slab_hit reads. */
-__attribute__((always_inline)) static inline unsigned slab_hit_pair_sse2(const slab_ray *r, const rt_bvh_node *pair,
-                                                                         rt_real t_max, rt_real t_enter[2])
+typedef struct {
+    v2df t0_01, t0_23, t1_01, t1_23; /* entry and exit distances of children 0, 1 and 2, 3 */
+} slab4;
+
+/* One axis of slab_hit for all four children, two per register: the same IEEE
+ * operations in the same order, so the same distances (maxpd and minpd are rt_max and
+ * rt_min: a > b ? a : b and a < b ? a : b). */
+__attribute__((always_inline)) static inline void slab_axis_sse2(const slab_ray *r, const rt_bvh_node *node, int k,
+                                                                 slab4 *s)
 {
-    __m128 a = _mm_loadu_ps(&pair[0].box[0]), b = _mm_loadu_ps(&pair[1].box[0]); /* lo x y z, hi x */
-    /* hi y z, then `first` and `count` read as floats: those two lanes are never converted. */
-    __m128 a_hi = _mm_loadu_ps(&pair[0].box[4]), b_hi = _mm_loadu_ps(&pair[1].box[4]);
-    __m128 lxy = _mm_unpacklo_ps(a, b), lzhx = _mm_unpackhi_ps(a, b), hyz = _mm_unpacklo_ps(a_hi, b_hi);
-    const __m128d *o = r->origin2, *inv = r->inv2;
-    __m128d x0 = _mm_mul_pd(_mm_sub_pd(_mm_cvtps_pd(lxy), o[0]), inv[0]);
-    __m128d y0 = _mm_mul_pd(_mm_sub_pd(_mm_cvtps_pd(_mm_movehl_ps(lxy, lxy)), o[1]), inv[1]);
-    __m128d z0 = _mm_mul_pd(_mm_sub_pd(_mm_cvtps_pd(lzhx), o[2]), inv[2]);
-    __m128d x1 = _mm_mul_pd(_mm_sub_pd(_mm_cvtps_pd(_mm_movehl_ps(lzhx, lzhx)), o[0]), inv[0]);
-    __m128d y1 = _mm_mul_pd(_mm_sub_pd(_mm_cvtps_pd(hyz), o[1]), inv[1]);
-    __m128d z1 = _mm_mul_pd(_mm_sub_pd(_mm_cvtps_pd(_mm_movehl_ps(hyz, hyz)), o[2]), inv[2]);
-    __m128d t0 = _mm_max_pd(_mm_max_pd(_mm_max_pd(r->t_min2, _mm_min_pd(x0, x1)), _mm_min_pd(y0, y1)), _mm_min_pd(z0, z1));
-    __m128d t1 = _mm_min_pd(_mm_min_pd(_mm_min_pd(_mm_set1_pd(t_max), _mm_max_pd(x0, x1)), _mm_max_pd(y0, y1)),
-                            _mm_max_pd(z0, z1));
-    _mm_storeu_pd(t_enter, t0);
-    return (unsigned)_mm_movemask_pd(_mm_cmple_pd(t0, t1));
+    v4sf near = *(const v4sf *)node->box[r->near[k]], far = *(const v4sf *)node->box[r->far[k]];
+    v2df o = r->origin2[k], inv = r->inv2[k];
+    s->t0_01 = __builtin_ia32_maxpd(s->t0_01, (v2df_from_lo(near) - o) * inv);
+    s->t0_23 = __builtin_ia32_maxpd(s->t0_23, (v2df_from_hi(near) - o) * inv);
+    s->t1_01 = __builtin_ia32_minpd(s->t1_01, (v2df_from_lo(far) - o) * inv);
+    s->t1_23 = __builtin_ia32_minpd(s->t1_23, (v2df_from_hi(far) - o) * inv);
+}
+
+/* slab_hit on all four children at once. */
+__attribute__((always_inline)) static inline unsigned slab_hit_sse2(const slab_ray *r, const rt_bvh_node *node,
+                                                                    rt_real t_max, rt_real t_enter[RT_BVH_WIDTH])
+{
+    v2df limit = {t_max, t_max};
+    slab4 s = {r->t_min2, r->t_min2, limit, limit};
+    slab_axis_sse2(r, node, 0, &s);
+    slab_axis_sse2(r, node, 1, &s);
+    slab_axis_sse2(r, node, 2, &s);
+    t_enter[0] = s.t0_01[0];
+    t_enter[1] = s.t0_01[1];
+    t_enter[2] = s.t0_23[0];
+    t_enter[3] = s.t0_23[1];
+    unsigned hits = (unsigned)(__builtin_ia32_movmskpd(__builtin_ia32_cmplepd(s.t0_01, s.t1_01)) |
+                               __builtin_ia32_movmskpd(__builtin_ia32_cmplepd(s.t0_23, s.t1_23)) << 2);
+    v4su unused = *(const v4su *)node->count == RT_BVH_NO_CHILD;
+    return hits & ~(unsigned)__builtin_ia32_movmskps((v4sf)unused);
 }
 #endif
 
-/* Tests both children of an inner node (pair = &nodes[first]): bit k of the result is
- * set when pair[k] is entered before t_max, at t_enter[k]. */
-__attribute__((always_inline)) static inline unsigned slab_hit_pair(const slab_ray *r, const rt_bvh_node *pair,
-                                                                    rt_real t_max, rt_real t_enter[2])
+/* Tests every child of `node`: bit c of the result is set when child c is entered
+ * before t_max, at t_enter[c]. Unused slots never are. */
+__attribute__((always_inline)) static inline unsigned slab_hit_children(const slab_ray *r, const rt_bvh_node *node,
+                                                                        rt_real t_max, rt_real t_enter[RT_BVH_WIDTH])
 {
 #if SLAB_SSE2
-    if (!r->general) return slab_hit_pair_sse2(r, pair, t_max, t_enter);
+    if (!r->general) return slab_hit_sse2(r, node, t_max, t_enter);
 #endif
-    return (unsigned)slab_hit(r, &pair[0], t_max, &t_enter[0]) | (unsigned)slab_hit(r, &pair[1], t_max, &t_enter[1]) << 1;
+    unsigned hits = 0;
+    for (int c = 0; c < RT_BVH_WIDTH; c++)
+        if (node->count[c] != RT_BVH_NO_CHILD && slab_hit(r, node, c, t_max, &t_enter[c])) hits |= 1u << c;
+    return hits;
 }
 
 /* Keeps prim's hit in *best if it is nearer, or as near and a lower reference. */
@@ -440,32 +592,32 @@ __attribute__((always_inline)) static inline void consider(const rt_scene *scene
     *found = true;
 }
 
-__attribute__((always_inline)) static inline bool leaf_loop(const rt_scene *scene, const rt_bvh_node *leaf,
+__attribute__((always_inline)) static inline bool leaf_loop(const rt_scene *scene, uint32_t first, uint32_t count,
                                                             const rt_ray_setup *rs, bool any, rt_scene_hit *best,
                                                             bool *found, int kx, int ky, int kz)
 {
     const uint32_t *refs = scene->bvh.prim_refs;
-    for (uint32_t i = leaf->first; i < leaf->first + leaf->count; i++) {
+    for (uint32_t i = first; i < first + count; i++) {
         consider(scene, refs[i], rs, best, found, kx, ky, kz);
         if (any && *found) break;
     }
     return *found;
 }
 
-/* A leaf's primitives, out of line so that the traversal loop keeps its registers, with
- * one copy of the loop per axis permutation; with `any`, stops at the first hit.
- * Returns *found. */
-__attribute__((noinline)) static bool visit_leaf(const rt_scene *scene, const rt_bvh_node *leaf, const rt_ray_setup *rs,
-                                                 bool any, rt_scene_hit *best, bool *found)
+/* The references prim_refs[first .. first + count), out of line so that the traversal
+ * loop keeps its registers, with one copy of the loop per axis permutation; with `any`,
+ * stops at the first hit. Returns *found. */
+__attribute__((noinline)) static bool visit_leaf(const rt_scene *scene, uint32_t first, uint32_t count,
+                                                 const rt_ray_setup *rs, bool any, rt_scene_hit *best, bool *found)
 {
     bool swapped = rs->kx != (rs->kz + 1) % 3; /* see rt_ray_prepare */
     switch (rs->kz * 2 + swapped) {
-    case 0: return leaf_loop(scene, leaf, rs, any, best, found, 1, 2, 0);
-    case 1: return leaf_loop(scene, leaf, rs, any, best, found, 2, 1, 0);
-    case 2: return leaf_loop(scene, leaf, rs, any, best, found, 2, 0, 1);
-    case 3: return leaf_loop(scene, leaf, rs, any, best, found, 0, 2, 1);
-    case 4: return leaf_loop(scene, leaf, rs, any, best, found, 0, 1, 2);
-    default: return leaf_loop(scene, leaf, rs, any, best, found, 1, 0, 2);
+    case 0: return leaf_loop(scene, first, count, rs, any, best, found, 1, 2, 0);
+    case 1: return leaf_loop(scene, first, count, rs, any, best, found, 2, 1, 0);
+    case 2: return leaf_loop(scene, first, count, rs, any, best, found, 2, 0, 1);
+    case 3: return leaf_loop(scene, first, count, rs, any, best, found, 0, 2, 1);
+    case 4: return leaf_loop(scene, first, count, rs, any, best, found, 0, 1, 2);
+    default: return leaf_loop(scene, first, count, rs, any, best, found, 1, 0, 2);
     }
 }
 
@@ -476,12 +628,67 @@ static bool nearest_brute(const rt_scene *scene, const rt_ray_setup *rs, rt_scen
     return found;
 }
 
+/* A child waiting to be visited: a node (count 0) or a leaf's references, and the
+ * distance at which the ray enters its box. */
 typedef struct {
-    uint32_t node;
+    uint32_t child, count;
     rt_real t_enter;
 } stack_entry;
 
-/* Boxes are tested against the best t itself (not below it), and a popped node is
+/* Each wide level pushes at most RT_BVH_WIDTH - 1 children, after the root. */
+#define QUERY_STACK (RT_BVH_MAX_DEPTH * (RT_BVH_WIDTH - 1) + 1)
+
+static inline stack_entry child_entry(const rt_bvh_node *node, int c, rt_real t_enter)
+{
+    return (stack_entry){node->child[c], node->count[c], t_enter};
+}
+
+/* Of hit children a < b, returns the nearer (a on a tie) and pushes the other. */
+__attribute__((always_inline)) static inline stack_entry nearer_of(const rt_bvh_node *node, int a, int b,
+                                                                   const rt_real t[RT_BVH_WIDTH], stack_entry *stack,
+                                                                   uint32_t *top)
+{
+    if (t[b] < t[a]) {
+        stack[(*top)++] = child_entry(node, a, t[a]);
+        return child_entry(node, b, t[b]);
+    }
+    stack[(*top)++] = child_entry(node, b, t[b]);
+    return child_entry(node, a, t[a]);
+}
+
+/* Returns the nearest of the children in `hits`, pushing the others farthest first.
+ * One or two hits are told apart by branches, each with its slots as constants, not
+ * computed: a predicted branch lets the next node's load start before this node's test
+ * is done. */
+__attribute__((always_inline)) static inline stack_entry descend(const rt_bvh_node *node, unsigned hits,
+                                                                 const rt_real t[RT_BVH_WIDTH], stack_entry *stack,
+                                                                 uint32_t *top)
+{
+    switch (hits) {
+    case 1: return child_entry(node, 0, t[0]);
+    case 2: return child_entry(node, 1, t[1]);
+    case 4: return child_entry(node, 2, t[2]);
+    case 8: return child_entry(node, 3, t[3]);
+    case 3: return nearer_of(node, 0, 1, t, stack, top);
+    case 5: return nearer_of(node, 0, 2, t, stack, top);
+    case 6: return nearer_of(node, 1, 2, t, stack, top);
+    case 9: return nearer_of(node, 0, 3, t, stack, top);
+    case 10: return nearer_of(node, 1, 3, t, stack, top);
+    case 12: return nearer_of(node, 2, 3, t, stack, top);
+    default: break;
+    }
+    int order[RT_BVH_WIDTH], n = 0; /* the hit children by entry distance, ties by slot */
+    for (int c = 0; c < RT_BVH_WIDTH; c++) {
+        if (!(hits >> c & 1u)) continue;
+        int i = n++;
+        for (; i > 0 && t[order[i - 1]] > t[c]; i--) order[i] = order[i - 1];
+        order[i] = c;
+    }
+    for (int i = n - 1; i > 0; i--) stack[(*top)++] = child_entry(node, order[i], t[order[i]]);
+    return child_entry(node, order[0], t[order[0]]);
+}
+
+/* Boxes are tested against the best t itself (not below it), and a popped child is
  * skipped only when it is entered beyond the best t, so ties to a lower reference survive.
  * With `any`, the first hit found ends the search (rt_scene_any). */
 static bool nearest_bvh(const rt_scene *scene, const rt_ray_setup *rs, bool any, rt_scene_hit *out)
@@ -489,39 +696,23 @@ static bool nearest_bvh(const rt_scene *scene, const rt_ray_setup *rs, bool any,
     const rt_bvh_node *nodes = scene->bvh.nodes;
     slab_ray sr = slab_prepare(rs, &scene->bvh);
     bool found = false;
-    stack_entry stack[RT_BVH_MAX_DEPTH + 2];
+    stack_entry stack[QUERY_STACK];
     uint32_t top = 0;
-    rt_real t_root;
-    if (scene->prim_count == 0 || !slab_hit(&sr, &nodes[0], rs->ray.t_max, &t_root)) return false;
-    stack[top++] = (stack_entry){0, t_root};
+    if (scene->prim_count == 0) return false;
+    stack[top++] = (stack_entry){0, 0, rs->ray.t_min}; /* the root node */
     while (top > 0) {
         stack_entry e = stack[--top];
         if (found && e.t_enter > out->hit.t) continue;
-        const rt_bvh_node *node = &nodes[e.node];
-        /* Descend into the nearer child directly; the farther one waits on the stack. */
-        while (node->count == 0) {
-            rt_real limit = found ? out->hit.t : rs->ray.t_max, t[2];
-            uint32_t first = node->first;
-            unsigned hits = slab_hit_pair(&sr, &nodes[first], limit, t);
-            /* Branches, not selects: a predicted branch lets the next node's load start
-             * before this test is done (traversal waits on memory more than on arithmetic). */
-            if (hits == 1) {
-                node = &nodes[first];
-            } else if (hits == 2) {
-                node = &nodes[first + 1];
-            } else if (hits == 3 && t[0] <= t[1]) {
-                stack[top++] = (stack_entry){first + 1, t[1]};
-                node = &nodes[first];
-            } else if (hits == 3) {
-                stack[top++] = (stack_entry){first, t[0]};
-                node = &nodes[first + 1];
-            } else {
-                node = NULL;
-                break;
-            }
+        /* Descend into the nearest child directly; the others wait on the stack. */
+        while (e.count == 0) {
+            const rt_bvh_node *node = &nodes[e.child];
+            rt_real limit = found ? out->hit.t : rs->ray.t_max, t[RT_BVH_WIDTH];
+            unsigned hits = slab_hit_children(&sr, node, limit, t);
+            if (!hits) break;
+            e = descend(node, hits, t, stack, &top);
         }
-        if (!node) continue;
-        if (visit_leaf(scene, node, rs, any, out, &found) && any) return true;
+        if (e.count == 0) continue;
+        if (visit_leaf(scene, e.child, e.count, rs, any, out, &found) && any) return true;
     }
     return found;
 }

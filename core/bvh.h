@@ -7,7 +7,8 @@
 #include "intersect.h"
 #include "scene.h"
 
-/* Deepest tree the builder makes; traversal stacks are sized by it. */
+/* Deepest binary tree the builder makes (the 4-wide tree is at most as deep);
+ * traversal stacks are sized by it. */
 #define RT_BVH_MAX_DEPTH 64
 
 typedef struct {
@@ -18,8 +19,8 @@ typedef struct {
 /* Builds scene->bvh over scene->prim_count primitives. Scratch comes from the arena too. */
 rt_status rt_bvh_build(rt_scene *scene, rt_arena *arena);
 
-/* A node's box as stored (holding the exact bounds it was built from). */
-rt_aabb rt_bvh_node_box(const rt_bvh *bvh, const rt_bvh_node *node);
+/* Child c's box as stored (holding the exact bounds it was built from). */
+rt_aabb rt_bvh_child_box(const rt_bvh *bvh, const rt_bvh_node *node, int c);
 
 /* The world-space bounds of primitive `prim`. */
 rt_aabb rt_prim_bounds(const rt_scene *scene, uint32_t prim);

@@ -89,7 +89,7 @@ uint64_t rt_fx_div128_round(uint64_t hi, uint64_t lo, uint64_t d)
     uint64_t q = 0, r = 0;
     for (int i = hi ? 127 - __builtin_clzll(hi) : 63 - __builtin_clzll(lo); i >= 0; i--) {
         uint64_t carry = r >> 63; /* r < d < 2^64, so r * 2 + bit may need a 65th bit */
-        r = r << 1 | (i >= 64 ? hi >> (i - 64) : lo >> i) & 1;
+        r = r << 1 | ((i >= 64 ? hi >> (i - 64) : lo >> i) & 1);
         if (q >> 62) return UINT64_MAX;
         q <<= 1;
         if (carry || r >= d) {

@@ -140,13 +140,17 @@ typedef struct {
 
 typedef struct { rt_vec3 lo, hi; } rt_aabb;
 
-/* A BVH node, 32 bytes: its box as lo x, y, z then hi x, y, z, each rounded outwards to
- * four bytes (rt_bound, on the tree's grid); an inner node's children are nodes[first]
- * and nodes[first + 1], a leaf covers prim_refs[first .. first + count). */
+/* A BVH node, 128 bytes: up to RT_BVH_WIDTH children, each an inner node or a leaf.
+ * Child c's box is box[k][c] for the planes k = lo x, y, z, hi x, y, z, rounded outwards
+ * to four bytes (rt_bound, on the tree's grid). An inner child is nodes[child[c]] with
+ * count[c] = 0; a leaf child covers prim_refs[child[c] .. child[c] + count[c]); an
+ * unused slot has count[c] = RT_BVH_NO_CHILD. Slots are filled from 0. */
+#define RT_BVH_WIDTH 4
+#define RT_BVH_NO_CHILD UINT32_MAX
 typedef struct {
-    rt_bound box[6];
-    uint32_t first;
-    uint32_t count; /* 0 for inner nodes */
+    rt_bound box[6][RT_BVH_WIDTH];
+    uint32_t child[RT_BVH_WIDTH];
+    uint32_t count[RT_BVH_WIDTH];
 } rt_bvh_node;
 
 typedef struct {

@@ -28,40 +28,52 @@ static rt_vec3 point(fz_bytes *in, coord_mode mode, double range)
     return rt_v3(x, y, coord(in, mode, range));
 }
 
-/* Every reference sits in exactly one leaf, inside the leaf's box; children lie inside their parent. */
+static bool box_inside(const rt_aabb *inner, const rt_aabb *outer)
+{
+    return outer->lo.x <= inner->lo.x && outer->lo.y <= inner->lo.y && outer->lo.z <= inner->lo.z &&
+           inner->hi.x <= outer->hi.x && inner->hi.y <= outer->hi.y && inner->hi.z <= outer->hi.z;
+}
+
+/* Every reference sits in exactly one leaf, inside the leaf's box; every node but the
+ * root is one slot's child, and its children lie inside that slot's box. */
 static void check_tree(const rt_scene *s)
 {
     const rt_bvh *bvh = &s->bvh;
-    static uint8_t seen[MAX_TRIANGLES + MAX_QUADRICS];
+    static uint8_t seen[MAX_TRIANGLES + MAX_QUADRICS], parents[MAX_TRIANGLES + MAX_QUADRICS];
     memset(seen, 0, sizeof seen);
-    FZ_CHECK(bvh->node_count <= 2 * s->prim_count - 1 && bvh->depth <= RT_BVH_MAX_DEPTH, "%u nodes, depth %u for %u primitives",
-             bvh->node_count, bvh->depth, s->prim_count);
+    memset(parents, 0, sizeof parents);
+    FZ_CHECK(bvh->node_count >= 1 && bvh->node_count <= (s->prim_count > 1 ? s->prim_count - 1 : 1) &&
+                 bvh->depth <= RT_BVH_MAX_DEPTH,
+             "%u nodes, depth %u for %u primitives", bvh->node_count, bvh->depth, s->prim_count);
+    FZ_CHECK(s->prim_count == 0 || bvh->nodes[0].count[0] != RT_BVH_NO_CHILD, "the root has no children");
     for (uint32_t i = 0; i < bvh->node_count; i++) {
         const rt_bvh_node *n = &bvh->nodes[i];
-        rt_aabb node_box = rt_bvh_node_box(bvh, n);
-        const rt_aabb *box = &node_box;
-        if (n->count == 0) {
-            FZ_CHECK(n->first > i && n->first + 1 < bvh->node_count, "node %u has children %u", i, n->first);
-            for (uint32_t c = n->first; c < n->first + 2; c++) {
-                rt_aabb child_box = rt_bvh_node_box(bvh, &bvh->nodes[c]);
-                const rt_aabb *b = &child_box;
-                FZ_CHECK(box->lo.x <= b->lo.x && box->lo.y <= b->lo.y && box->lo.z <= b->lo.z && b->hi.x <= box->hi.x &&
-                             b->hi.y <= box->hi.y && b->hi.z <= box->hi.z,
-                         "child %u pokes out of node %u", c, i);
+        for (int c = 0; c < RT_BVH_WIDTH; c++) {
+            if (n->count[c] == RT_BVH_NO_CHILD) {
+                FZ_CHECK(c == RT_BVH_WIDTH - 1 || n->count[c + 1] == RT_BVH_NO_CHILD, "node %u skips slot %d", i, c);
+                continue;
             }
-            continue;
-        }
-        FZ_CHECK(n->first + n->count <= s->prim_count, "leaf %u covers refs %u..%u", i, n->first, n->first + n->count);
-        for (uint32_t k = n->first; k < n->first + n->count; k++) {
-            uint32_t prim = bvh->prim_refs[k];
-            FZ_CHECK(prim < s->prim_count && !seen[prim], "primitive %u referenced twice or out of range", prim);
-            seen[prim] = 1;
-            rt_aabb b = rt_prim_bounds(s, prim);
-            FZ_CHECK(box->lo.x <= b.lo.x && box->lo.y <= b.lo.y && box->lo.z <= b.lo.z && b.hi.x <= box->hi.x &&
-                         b.hi.y <= box->hi.y && b.hi.z <= box->hi.z,
-                     "primitive %u pokes out of leaf %u", prim, i);
+            rt_aabb box = rt_bvh_child_box(bvh, n, c);
+            uint32_t first = n->child[c], count = n->count[c];
+            if (count == 0) {
+                FZ_CHECK(first > i && first < bvh->node_count && !parents[first]++, "node %u slot %d: child %u", i, c, first);
+                for (int g = 0; g < RT_BVH_WIDTH && bvh->nodes[first].count[g] != RT_BVH_NO_CHILD; g++) {
+                    rt_aabb inner = rt_bvh_child_box(bvh, &bvh->nodes[first], g);
+                    FZ_CHECK(box_inside(&inner, &box), "node %u slot %d pokes out of node %u slot %d", first, g, i, c);
+                }
+                continue;
+            }
+            FZ_CHECK(first + count <= s->prim_count, "node %u slot %d covers refs %u..%u", i, c, first, first + count);
+            for (uint32_t k = first; k < first + count; k++) {
+                uint32_t prim = bvh->prim_refs[k];
+                FZ_CHECK(prim < s->prim_count && !seen[prim], "primitive %u referenced twice or out of range", prim);
+                seen[prim] = 1;
+                rt_aabb b = rt_prim_bounds(s, prim);
+                FZ_CHECK(box_inside(&b, &box), "primitive %u pokes out of node %u slot %d", prim, i, c);
+            }
         }
     }
+    for (uint32_t i = 1; i < bvh->node_count; i++) FZ_CHECK(parents[i] == 1, "node %u has no parent", i);
     for (uint32_t p = 0; p < s->prim_count; p++) FZ_CHECK(seen[p], "primitive %u is in no leaf", p);
 }
 

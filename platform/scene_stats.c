@@ -12,18 +12,33 @@ static double surface_area(const rt_aabb *b)
     return 2 * (x * y + y * z + z * x);
 }
 
+/* The root's box: the union of its children's. */
+static rt_aabb root_box(const rt_bvh *bvh)
+{
+    const rt_bvh_node *root = &bvh->nodes[0];
+    rt_aabb box = rt_bvh_child_box(bvh, root, 0);
+    for (int c = 1; c < RT_BVH_WIDTH && root->count[c] != RT_BVH_NO_CHILD; c++) {
+        rt_aabb b = rt_bvh_child_box(bvh, root, c);
+        box.lo = rt_v3_min(box.lo, b.lo);
+        box.hi = rt_v3_max(box.hi, b.hi);
+    }
+    return box;
+}
+
 double rt_bvh_sah_cost(const rt_bvh *bvh, uint32_t prim_count)
 {
-    /* Without primitives the root is an empty leaf whose box is inverted. */
+    /* Without primitives the root has no children. */
     if (prim_count == 0) return 0;
-    rt_aabb root_box = rt_bvh_node_box(bvh, &bvh->nodes[0]);
-    double root = surface_area(&root_box);
+    rt_aabb box = root_box(bvh);
+    double root = surface_area(&box);
     if (!(root > 0)) return prim_count;
-    double cost = 0;
+    double cost = 1; /* the root's visit */
     for (uint32_t i = 0; i < bvh->node_count; i++) {
         const rt_bvh_node *n = &bvh->nodes[i];
-        rt_aabb box = rt_bvh_node_box(bvh, n);
-        cost += (n->count ? n->count : 1) * surface_area(&box) / root;
+        for (int c = 0; c < RT_BVH_WIDTH && n->count[c] != RT_BVH_NO_CHILD; c++) {
+            rt_aabb child = rt_bvh_child_box(bvh, n, c);
+            cost += (n->count[c] ? n->count[c] : 1) * surface_area(&child) / root;
+        }
     }
     return cost;
 }
@@ -43,8 +58,11 @@ void rt_scene_stats_compute(const rt_built_scene *built, rt_scene_stats *out)
     out->triangles = s->triangle_count;
     for (uint32_t i = 0; i < s->light_count; i++) out->lights[s->lights[i].kind]++;
     out->bvh_nodes = s->bvh.node_count;
-    for (uint32_t i = 0; i < s->bvh.node_count; i++) out->bvh_leaves += s->bvh.nodes[i].count > 0;
-    if (s->prim_count == 0) out->bvh_leaves = 1;
+    for (uint32_t i = 0; i < s->bvh.node_count; i++)
+        for (int c = 0; c < RT_BVH_WIDTH; c++) {
+            uint32_t count = s->bvh.nodes[i].count[c];
+            out->bvh_leaves += count > 0 && count != RT_BVH_NO_CHILD;
+        }
     out->bvh_depth = s->bvh.depth;
     out->sah_cost = rt_bvh_sah_cost(&s->bvh, s->prim_count);
     out->arena_used = built->arena.used;

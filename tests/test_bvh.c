@@ -152,7 +152,10 @@ Test(bvh, every_reference_appears_once)
     uint8_t *seen = calloc(s.prim_count, 1);
     for (uint32_t n = 0; n < s.bvh.node_count; n++) {
         const rt_bvh_node *node = &s.bvh.nodes[n];
-        for (uint32_t i = node->first; node->count && i < node->first + node->count; i++) seen[s.bvh.prim_refs[i]]++;
+        for (int c = 0; c < RT_BVH_WIDTH; c++) {
+            if (node->count[c] == RT_BVH_NO_CHILD) continue;
+            for (uint32_t i = node->child[c]; i < node->child[c] + node->count[c]; i++) seen[s.bvh.prim_refs[i]]++;
+        }
     }
     for (uint32_t p = 0; p < s.prim_count; p++) cr_assert_eq(seen[p], 1, "primitive %u in %u leaves", p, seen[p]);
     free(seen);
