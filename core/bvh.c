@@ -460,6 +460,90 @@ static inline v2df v2df_from_hi(v4sf a)
 #define SLAB_SSE2 0
 #endif
 
+#ifdef RT_REAL_FIXED
+/* The fixed build's box test in plain 64-bit integers. Culling only has to be
+ * conservative (a box is never missed where the exact test hits it; the boxes are
+ * padded beyond any rounding of a hit's t), so instead of rounded, saturated Q32.32
+ * products it bounds each plane's distance from below (near planes) or above (far
+ * planes) in a per-ray unit of distance: with the plane b and o_lo = floor(origin) in
+ * the tree's grid units, d = b - o_lo, and m = floor(inv * 2^e) (|m| <= 2^29 on the
+ * steepest axis), the distance in units is d' m' with d' in (d - 1, d] and m' in
+ * [m, m + 1), so within |m| + 1 + |d| of d m. With |o_lo| < 2^32 every product stays
+ * below 2^62; rays beyond that take the general test. */
+typedef struct {
+    int64_t o_lo[3], m[3], m_err[3]; /* m_err = |m| + 1 */
+    int to_units;                    /* a Q32.32 value times 2^to_units is in units */
+    bool usable;
+} fixed_slab;
+
+/* floor(x / 2^s) for 0 <= s <= 63, by the magnitude (no signed right shift). */
+static int64_t floor_shift(int64_t x, int s)
+{
+    uint64_t mag = rt_fx_mag(x), q = mag >> s;
+    bool rest = (mag & ((UINT64_C(1) << s) - 1)) != 0;
+    return x < 0 ? -(int64_t)(q + rest) : (int64_t)q;
+}
+
+/* x * 2^s for s >= 0, saturated to +-INT64_MAX. */
+static int64_t saturating_scale(int64_t x, int s)
+{
+    int64_t most = INT64_MAX >> s;
+    return x > most ? INT64_MAX : x < -most ? -INT64_MAX : x * ((int64_t)1 << s);
+}
+
+/* x * 2^s rounded down (up = false) or up, saturated; -63 <= s <= 62. */
+static int64_t scale_bound(int64_t x, int s, bool up)
+{
+    if (s >= 0) return saturating_scale(x, s);
+    return up ? -floor_shift(-x, -s) : floor_shift(x, -s);
+}
+
+/* The number of bits of v (0 for 0). */
+static int bit_length(uint64_t v)
+{
+    int n = 0;
+    for (int step = 32; step > 0; step /= 2)
+        if (v >> step) {
+            v >>= step;
+            n += step;
+        }
+    return n + (v != 0);
+}
+
+static fixed_slab fixed_slab_prepare(rt_vec3 origin, rt_vec3 inv, int grid)
+{
+    fixed_slab f;
+    rt_real o[3] = {origin.x, origin.y, origin.z}, iv[3] = {inv.x, inv.y, inv.z};
+    int steepest = 0;
+    f.usable = true;
+    for (int k = 0; k < 3; k++) {
+        int bits = bit_length(rt_fx_mag(iv[k]));
+        if (bits > steepest) steepest = bits;
+        f.o_lo[k] = floor_shift(o[k], grid);
+        if (rt_fx_mag(f.o_lo[k]) >= UINT64_C(1) << 32) f.usable = false;
+    }
+    /* e = 29 - steepest leaves m 29 bits on the steepest axis. A distance is d' g inv
+     * with the grid unit g = 2^(grid - 32) and inv = inv_q 2^-32 (inv_q the Q32.32 count),
+     * so the unit is 2^(grid - 64 - e), and a Q32.32 t (t_q 2^-32) is t_q 2^(e + 32 - grid)
+     * units. */
+    int e = 29 - steepest;
+    f.to_units = e + 32 - grid;
+    for (int k = 0; k < 3; k++) {
+        f.m[k] = e >= 0 ? iv[k] * ((int64_t)1 << e) : floor_shift(iv[k], -e);
+        f.m_err[k] = (int64_t)rt_fx_mag(f.m[k]) + 1;
+    }
+    return f;
+}
+
+/* Lower (near = true) or upper bound of one plane's distance, in units. */
+static inline int64_t fixed_plane(const fixed_slab *f, int k, rt_bound b, bool near)
+{
+    int64_t d = (int64_t)b - f->o_lo[k];
+    int64_t err = f->m_err[k] + (int64_t)rt_fx_mag(d);
+    return near ? d * f->m[k] - err : d * f->m[k] + err;
+}
+#endif
+
 /* The slab test of rt_intersect_aabb on a child's stored box, with the per-axis branches
  * decided once per ray: for a non-zero direction component the near plane is lo when it
  * is positive and hi when negative (the products are monotonic in the plane, so this is
@@ -476,6 +560,9 @@ typedef struct {
     const rt_bvh *bvh;
 #if SLAB_SSE2
     v2df origin2[3], inv2[3], t_min2; /* each value in both lanes */
+#endif
+#ifdef RT_REAL_FIXED
+    fixed_slab fx;
 #endif
 } slab_ray;
 
@@ -503,6 +590,10 @@ static slab_ray slab_prepare(const rt_ray_setup *rs, const rt_bvh *bvh)
 #endif
     r.general = d.x == RT_ZERO || d.y == RT_ZERO || d.z == RT_ZERO || !rt_is_finite(inv.x) || !rt_is_finite(inv.y) ||
                 !rt_is_finite(inv.z) || !rt_is_finite(o.x) || !rt_is_finite(o.y) || !rt_is_finite(o.z);
+#ifdef RT_REAL_FIXED
+    r.fx = fixed_slab_prepare(o, inv, bvh->grid);
+    r.general = r.general || !r.fx.usable;
+#endif
     return r;
 }
 
@@ -566,6 +657,30 @@ __attribute__((always_inline)) static inline unsigned slab_hit_sse2(const slab_r
 }
 #endif
 
+#ifdef RT_REAL_FIXED
+/* All four children with fixed_plane's bounds: a superset of the exact test's hits, and
+ * entry distances at or below the exact ones. */
+__attribute__((always_inline)) static inline unsigned slab_hit_fixed(const slab_ray *r, const rt_bvh_node *node,
+                                                                     rt_real t_max, rt_real t_enter[RT_BVH_WIDTH])
+{
+    const fixed_slab *f = &r->fx;
+    int64_t t_min_u = scale_bound(r->t_min, f->to_units, false), limit_u = scale_bound(t_max, f->to_units, true);
+    unsigned hits = 0;
+    for (int c = 0; c < RT_BVH_WIDTH; c++) {
+        if (node->count[c] == RT_BVH_NO_CHILD) continue;
+        int64_t t0 = t_min_u, t1 = limit_u;
+        for (int k = 0; k < 3; k++) {
+            t0 = rt_max(t0, fixed_plane(f, k, node->box[r->near[k]][c], true));
+            t1 = rt_min(t1, fixed_plane(f, k, node->box[r->far[k]][c], false));
+        }
+        if (t0 > t1) continue;
+        hits |= 1u << c;
+        t_enter[c] = scale_bound(t0, -f->to_units, false);
+    }
+    return hits;
+}
+#endif
+
 /* Tests every child of `node`: bit c of the result is set when child c is entered
  * before t_max, at t_enter[c]. Unused slots never are. */
 __attribute__((always_inline)) static inline unsigned slab_hit_children(const slab_ray *r, const rt_bvh_node *node,
@@ -573,6 +688,9 @@ __attribute__((always_inline)) static inline unsigned slab_hit_children(const sl
 {
 #if SLAB_SSE2
     if (!r->general) return slab_hit_sse2(r, node, t_max, t_enter);
+#endif
+#ifdef RT_REAL_FIXED
+    if (!r->general) return slab_hit_fixed(r, node, t_max, t_enter);
 #endif
     unsigned hits = 0;
     for (int c = 0; c < RT_BVH_WIDTH; c++)
