@@ -1,0 +1,278 @@
+/* The per-ray box tests of the BVH queries (bvh_query.c): a ray's slab set-up, and the
+ * test of a node's four children in the double build with SSE2, in the fixed build with
+ * integer bounds, and one by one otherwise. Included by bvh_query.c only. */
+#ifndef RT_BVH_SLAB_H
+#define RT_BVH_SLAB_H
+
+#include "bvh.h"
+
+/* The double build tests a node's four children two at a time with SSE2 (x86-64's
+ * baseline), the fixed build with integer bounds (below); other targets and unusual
+ * rays test them one by one. The SSE2 operations are the compilers' own builtins (the
+ * core includes no intrinsics header). */
+#if defined(__SSE2__) && !defined(RT_REAL_FIXED)
+#define SLAB_SSE2 1
+typedef double v2df __attribute__((vector_size(16)));
+typedef float v4sf __attribute__((vector_size(16), aligned(4), may_alias));
+typedef uint32_t v4su __attribute__((vector_size(16), aligned(4), may_alias));
+
+/* Lanes 0, 1 (lo) or 2, 3 (hi) of four floats, as doubles: one cvtps2pd either way. */
+static inline v2df v2df_from_lo(v4sf a)
+{
+#ifdef __clang__
+    return __builtin_convertvector(__builtin_shufflevector(a, a, 0, 1), v2df);
+#else
+    return __builtin_ia32_cvtps2pd(a);
+#endif
+}
+static inline v2df v2df_from_hi(v4sf a)
+{
+#ifdef __clang__
+    return __builtin_convertvector(__builtin_shufflevector(a, a, 2, 3), v2df);
+#else
+    return __builtin_ia32_cvtps2pd(__builtin_ia32_movhlps(a, a));
+#endif
+}
+#else
+#define SLAB_SSE2 0
+#endif
+
+#ifdef RT_REAL_FIXED
+/* The fixed build's box test in plain 64-bit integers. Culling only has to be
+ * conservative (a box is never missed where the exact test hits it; the boxes are
+ * padded beyond any rounding of a hit's t), so instead of rounded, saturated Q32.32
+ * products it bounds each plane's distance from below (near planes) or above (far
+ * planes) in a per-ray unit of distance: with the plane b and o_lo = floor(origin) in
+ * the tree's grid units, d = b - o_lo, and m = floor(inv * 2^e) (|m| <= 2^29 on the
+ * steepest axis), the distance in units is d' m' with d' in (d - 1, d] and m' in
+ * [m, m + 1), so within |m| + 1 + |d| of d m. With |o_lo| < 2^32 every product stays
+ * below 2^62; rays beyond that take the general test. */
+typedef struct {
+    int64_t o_lo[3], m[3], m_err[3]; /* m_err = |m| + 1 */
+    int to_units;                    /* a Q32.32 value times 2^to_units is in units */
+    bool usable;
+} fixed_slab;
+
+/* floor(x / 2^s) for 0 <= s <= 63, by the magnitude (no signed right shift). */
+static int64_t floor_shift(int64_t x, int s)
+{
+    uint64_t mag = rt_fx_mag(x), q = mag >> s;
+    bool rest = (mag & ((UINT64_C(1) << s) - 1)) != 0;
+    return x < 0 ? -(int64_t)(q + rest) : (int64_t)q;
+}
+
+/* x * 2^s for s >= 0, saturated to +-INT64_MAX. */
+static int64_t saturating_scale(int64_t x, int s)
+{
+    int64_t most = INT64_MAX >> s;
+    return x > most ? INT64_MAX : x < -most ? -INT64_MAX : x * ((int64_t)1 << s);
+}
+
+/* x * 2^s rounded down (up = false) or up, saturated; -63 <= s <= 62. */
+static int64_t scale_bound(int64_t x, int s, bool up)
+{
+    if (s >= 0) return saturating_scale(x, s);
+    return up ? -floor_shift(-x, -s) : floor_shift(x, -s);
+}
+
+/* The number of bits of v (0 for 0). */
+static int bit_length(uint64_t v)
+{
+    int n = 0;
+    for (int step = 32; step > 0; step /= 2)
+        if (v >> step) {
+            v >>= step;
+            n += step;
+        }
+    return n + (v != 0);
+}
+
+static fixed_slab fixed_slab_prepare(rt_vec3 origin, rt_vec3 inv, int grid)
+{
+    fixed_slab f;
+    rt_real o[3] = {origin.x, origin.y, origin.z}, iv[3] = {inv.x, inv.y, inv.z};
+    int steepest = 0;
+    f.usable = true;
+    for (int k = 0; k < 3; k++) {
+        int bits = bit_length(rt_fx_mag(iv[k]));
+        if (bits > steepest) steepest = bits;
+        f.o_lo[k] = floor_shift(o[k], grid);
+        if (rt_fx_mag(f.o_lo[k]) >= UINT64_C(1) << 32) f.usable = false;
+    }
+    /* e = 29 - steepest leaves m 29 bits on the steepest axis. A distance is d' g inv
+     * with the grid unit g = 2^(grid - 32) and inv = inv_q 2^-32 (inv_q the Q32.32 count),
+     * so the unit is 2^(grid - 64 - e), and a Q32.32 t (t_q 2^-32) is t_q 2^(e + 32 - grid)
+     * units. */
+    int e = 29 - steepest;
+    f.to_units = e + 32 - grid;
+    for (int k = 0; k < 3; k++) {
+        f.m[k] = e >= 0 ? iv[k] * ((int64_t)1 << e) : floor_shift(iv[k], -e);
+        f.m_err[k] = (int64_t)rt_fx_mag(f.m[k]) + 1;
+    }
+    return f;
+}
+
+/* Lower (near = true) or upper bound of one plane's distance, in units. */
+static inline int64_t fixed_plane(const fixed_slab *f, int k, rt_bound b, bool near)
+{
+    int64_t d = (int64_t)b - f->o_lo[k];
+    int64_t err = f->m_err[k] + (int64_t)rt_fx_mag(d);
+    return near ? d * f->m[k] - err : d * f->m[k] + err;
+}
+#endif
+
+/* The slab test of rt_intersect_aabb on a child's stored box, with the per-axis branches
+ * decided once per ray: for a non-zero direction component the near plane is lo when it
+ * is positive and hi when negative (the products are monotonic in the plane, so this is
+ * the swap the general test makes), and without NaN the three axes can be clamped before
+ * the one comparison. Rays with a zero component, a non-finite reciprocal or origin keep
+ * the general test, whose zero-direction and NaN cases differ. */
+typedef struct {
+    rt_vec3 origin, inv;
+    rt_real t_min;
+    int near[3], far[3]; /* each axis' near and far plane: a row of rt_bvh_node.box */
+    int grid;
+    bool general;
+    const rt_ray_setup *rs;
+    const rt_bvh *bvh;
+#if SLAB_SSE2
+    v2df origin2[3], inv2[3], t_min2; /* each value in both lanes */
+#endif
+#ifdef RT_REAL_FIXED
+    fixed_slab fx;
+#endif
+} slab_ray;
+
+static slab_ray slab_prepare(const rt_ray_setup *rs, const rt_bvh *bvh)
+{
+    rt_vec3 d = rs->ray.direction, o = rs->ray.origin, inv = rs->inv_direction;
+    slab_ray r;
+    r.origin = o;
+    r.inv = inv;
+    r.t_min = rs->ray.t_min;
+    r.rs = rs;
+    r.bvh = bvh;
+    r.grid = bvh->grid;
+    for (int k = 0; k < 3; k++) {
+        bool neg = rt_v3_get(d, k) < RT_ZERO;
+        r.near[k] = neg ? 3 + k : k;
+        r.far[k] = neg ? k : 3 + k;
+#if SLAB_SSE2
+        r.origin2[k] = (v2df){rt_v3_get(o, k), rt_v3_get(o, k)};
+        r.inv2[k] = (v2df){rt_v3_get(inv, k), rt_v3_get(inv, k)};
+#endif
+    }
+#if SLAB_SSE2
+    r.t_min2 = (v2df){r.t_min, r.t_min};
+#endif
+    r.general = d.x == RT_ZERO || d.y == RT_ZERO || d.z == RT_ZERO || !rt_is_finite(inv.x) || !rt_is_finite(inv.y) ||
+                !rt_is_finite(inv.z) || !rt_is_finite(o.x) || !rt_is_finite(o.y) || !rt_is_finite(o.z);
+#ifdef RT_REAL_FIXED
+    r.fx = fixed_slab_prepare(o, inv, bvh->grid);
+    r.general = r.general || !r.fx.usable;
+#endif
+    return r;
+}
+
+/* Child c of `node`: entered before t_max, at *t_enter? */
+static inline bool slab_hit(const slab_ray *r, const rt_bvh_node *node, int c, rt_real t_max, rt_real *t_enter)
+{
+    if (r->general) {
+        rt_aabb box = rt_bvh_child_box(r->bvh, node, c);
+        return rt_intersect_aabb(r->rs, &box, t_max, t_enter);
+    }
+    const rt_bound(*b)[RT_BVH_WIDTH] = node->box;
+    int g = r->grid;
+    rt_real x0 = rt_mul(rt_sub(rt_bound_value(b[r->near[0]][c], g), r->origin.x), r->inv.x);
+    rt_real x1 = rt_mul(rt_sub(rt_bound_value(b[r->far[0]][c], g), r->origin.x), r->inv.x);
+    rt_real y0 = rt_mul(rt_sub(rt_bound_value(b[r->near[1]][c], g), r->origin.y), r->inv.y);
+    rt_real y1 = rt_mul(rt_sub(rt_bound_value(b[r->far[1]][c], g), r->origin.y), r->inv.y);
+    rt_real z0 = rt_mul(rt_sub(rt_bound_value(b[r->near[2]][c], g), r->origin.z), r->inv.z);
+    rt_real z1 = rt_mul(rt_sub(rt_bound_value(b[r->far[2]][c], g), r->origin.z), r->inv.z);
+    rt_real t0 = rt_max(rt_max(rt_max(r->t_min, x0), y0), z0);
+    rt_real t1 = rt_min(rt_min(rt_min(t_max, x1), y1), z1);
+    *t_enter = t0;
+    return !(t0 > t1);
+}
+
+#if SLAB_SSE2
+typedef struct {
+    v2df t0_01, t0_23, t1_01, t1_23; /* entry and exit distances of children 0, 1 and 2, 3 */
+} slab4;
+
+/* One axis of slab_hit for all four children, two per register: the same IEEE
+ * operations in the same order, so the same distances (maxpd and minpd are rt_max and
+ * rt_min: a > b ? a : b and a < b ? a : b). */
+__attribute__((always_inline)) static inline void slab_axis_sse2(const slab_ray *r, const rt_bvh_node *node, int k,
+                                                                 slab4 *s)
+{
+    v4sf near = *(const v4sf *)node->box[r->near[k]], far = *(const v4sf *)node->box[r->far[k]];
+    v2df o = r->origin2[k], inv = r->inv2[k];
+    s->t0_01 = __builtin_ia32_maxpd(s->t0_01, (v2df_from_lo(near) - o) * inv);
+    s->t0_23 = __builtin_ia32_maxpd(s->t0_23, (v2df_from_hi(near) - o) * inv);
+    s->t1_01 = __builtin_ia32_minpd(s->t1_01, (v2df_from_lo(far) - o) * inv);
+    s->t1_23 = __builtin_ia32_minpd(s->t1_23, (v2df_from_hi(far) - o) * inv);
+}
+
+/* slab_hit on all four children at once. */
+__attribute__((always_inline)) static inline unsigned slab_hit_sse2(const slab_ray *r, const rt_bvh_node *node,
+                                                                    rt_real t_max, rt_real t_enter[RT_BVH_WIDTH])
+{
+    v2df limit = {t_max, t_max};
+    slab4 s = {r->t_min2, r->t_min2, limit, limit};
+    slab_axis_sse2(r, node, 0, &s);
+    slab_axis_sse2(r, node, 1, &s);
+    slab_axis_sse2(r, node, 2, &s);
+    t_enter[0] = s.t0_01[0];
+    t_enter[1] = s.t0_01[1];
+    t_enter[2] = s.t0_23[0];
+    t_enter[3] = s.t0_23[1];
+    unsigned hits = (unsigned)(__builtin_ia32_movmskpd(__builtin_ia32_cmplepd(s.t0_01, s.t1_01)) |
+                               __builtin_ia32_movmskpd(__builtin_ia32_cmplepd(s.t0_23, s.t1_23)) << 2);
+    v4su unused = *(const v4su *)node->count == RT_BVH_NO_CHILD;
+    return hits & ~(unsigned)__builtin_ia32_movmskps((v4sf)unused);
+}
+#endif
+
+#ifdef RT_REAL_FIXED
+/* All four children with fixed_plane's bounds: a superset of the exact test's hits, and
+ * entry distances at or below the exact ones. */
+__attribute__((always_inline)) static inline unsigned slab_hit_fixed(const slab_ray *r, const rt_bvh_node *node,
+                                                                     rt_real t_max, rt_real t_enter[RT_BVH_WIDTH])
+{
+    const fixed_slab *f = &r->fx;
+    int64_t t_min_u = scale_bound(r->t_min, f->to_units, false), limit_u = scale_bound(t_max, f->to_units, true);
+    unsigned hits = 0;
+    for (int c = 0; c < RT_BVH_WIDTH; c++) {
+        if (node->count[c] == RT_BVH_NO_CHILD) continue;
+        int64_t t0 = t_min_u, t1 = limit_u;
+        for (int k = 0; k < 3; k++) {
+            t0 = rt_max(t0, fixed_plane(f, k, node->box[r->near[k]][c], true));
+            t1 = rt_min(t1, fixed_plane(f, k, node->box[r->far[k]][c], false));
+        }
+        if (t0 > t1) continue;
+        hits |= 1u << c;
+        t_enter[c] = scale_bound(t0, -f->to_units, false);
+    }
+    return hits;
+}
+#endif
+
+/* Tests every child of `node`: bit c of the result is set when child c is entered
+ * before t_max, at t_enter[c]. Unused slots never are. */
+__attribute__((always_inline)) static inline unsigned slab_hit_children(const slab_ray *r, const rt_bvh_node *node,
+                                                                        rt_real t_max, rt_real t_enter[RT_BVH_WIDTH])
+{
+#if SLAB_SSE2
+    if (!r->general) return slab_hit_sse2(r, node, t_max, t_enter);
+#endif
+#ifdef RT_REAL_FIXED
+    if (!r->general) return slab_hit_fixed(r, node, t_max, t_enter);
+#endif
+    unsigned hits = 0;
+    for (int c = 0; c < RT_BVH_WIDTH; c++)
+        if (node->count[c] != RT_BVH_NO_CHILD && slab_hit(r, node, c, t_max, &t_enter[c])) hits |= 1u << c;
+    return hits;
+}
+
+#endif
