@@ -365,21 +365,17 @@ rt_status rt_bvh_build(rt_scene *scene, rt_arena *arena)
     build_ref *refs = n > 0 ? rt_arena_alloc(arena, (size_t)n * sizeof(build_ref)) : NULL;
     build_task *stack = RT_NEW_ARRAY(arena, build_task, RT_BVH_MAX_DEPTH + 2);
     if (!bin || (n > 0 && !refs) || !stack) return RT_ERR_NOMEM;
-    if (n > 0) {
-        bin_count = build_binary(scene, refs, n, bin, stack, &bvh->grid);
-    } else { /* an empty leaf: the root gets no children */
-        store_box(bin[0].box, aabb_empty(), bvh->grid);
-        bin[0].first = bin[0].count = 0;
-    }
+    if (n > 0) bin_count = build_binary(scene, refs, n, bin, stack, &bvh->grid);
     for (uint32_t i = 0; i < n; i++) bvh->prim_refs[i] = refs[i].prim;
     /* At most one wide node per binary inner node, or one. */
     rt_bvh_node *wide = alloc_nodes(arena, bin_count / 2 + 1);
     collapse_task *tasks = RT_NEW_ARRAY(arena, collapse_task, COLLAPSE_STACK);
     if (!wide || !tasks) return RT_ERR_NOMEM;
-    uint32_t depth;
-    bvh->node_count = n > 0 ? collapse(bin, bvh->grid, wide, tasks, &depth) : 1;
-    if (n == 0) {
-        depth = 1;
+    uint32_t depth = 1;
+    if (n > 0) {
+        bvh->node_count = collapse(bin, bvh->grid, wide, tasks, &depth);
+    } else { /* no primitives: a root without children */
+        bvh->node_count = 1;
         for (int c = 0; c < RT_BVH_WIDTH; c++) clear_slot(wide, c, bvh->grid);
     }
     bvh->depth = depth;
