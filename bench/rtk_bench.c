@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "parallel.h"
 #include "rtk_rays.h"
 #include "scene_build.h"
 #include "timing.h"
@@ -72,36 +73,49 @@ static bool time_queries(const char *name, bench_range_fn fn, const rt_scene *sc
     return true;
 }
 
-/* Best-of-`repeats` time of rebuilding the BVH over the built scene's primitives. */
-static bool time_build(const rt_scene *scene, uint32_t repeats)
+/* Best-of-`repeats` wall time (and CPU time in *best_cpu) of rebuilding the BVH over the
+ * built scene's primitives on `threads` threads, or a negative time on failure. */
+static double time_build(const rt_scene *scene, uint32_t threads, uint32_t repeats, double *best_cpu)
 {
     size_t n = scene->prim_count;
     size_t size = n * (2 * sizeof(rt_bvh_node) + sizeof(uint32_t) + sizeof(rt_aabb) + sizeof(rt_vec3)) + ((size_t)1 << 20);
     void *memory = malloc(size);
     if (!memory) {
         fprintf(stderr, "rtk-bench: cannot allocate %zu MiB for the BVH build\n", size >> 20);
-        return false;
+        return -1.0;
     }
-    double best = 0.0, best_cpu = 0.0;
+    rt_workers workers = rt_thread_workers(threads);
+    double best = 0.0;
     for (uint32_t r = 0; r < repeats; r++) {
-        fprintf(stderr, "  rtk %s: BVH build %u/%u\n", RT_REAL_NAME, r + 1, repeats);
+        fprintf(stderr, "  rtk %s: BVH build, %u thread%s, %u/%u\n", RT_REAL_NAME, threads, threads > 1 ? "s" : "",
+                r + 1, repeats);
         rt_arena arena;
         rt_arena_init(&arena, memory, size);
         rt_scene copy = *scene;
         double start = bench_now(), cpu = bench_cpu_now();
-        rt_status st = rt_bvh_build(&copy, &arena);
+        rt_status st = rt_bvh_build(&copy, &arena, &workers);
         double s = bench_now() - start;
         cpu = bench_cpu_now() - cpu;
         if (st != RT_OK) {
             fprintf(stderr, "rtk-bench: BVH build failed: %s\n", rt_status_name(st));
             free(memory);
-            return false;
+            return -1.0;
         }
         if (r == 0 || s < best) best = s;
-        if (r == 0 || cpu < best_cpu) best_cpu = cpu;
+        if (r == 0 || cpu < *best_cpu) *best_cpu = cpu;
     }
     free(memory);
-    printf("build_s %.4f\nbuild_cpu_s %.4f\n", best, best_cpu);
+    return best;
+}
+
+/* The BVH build on one thread and on all of them. */
+static bool time_builds(const rt_scene *scene, uint32_t repeats)
+{
+    double cpu_1 = 0.0, cpu_all = 0.0;
+    double one = time_build(scene, 1, repeats, &cpu_1);
+    double all = one < 0.0 ? -1.0 : time_build(scene, bench_cpu_count(), repeats, &cpu_all);
+    if (all < 0.0) return false;
+    printf("build_s %.4f\nbuild_cpu_s %.4f\nbuild_all_s %.4f\n", one, cpu_1, all);
     return true;
 }
 
@@ -130,7 +144,7 @@ static int usage(void)
 int main(int argc, char **argv)
 {
     if (argc < 4 || (strcmp(argv[1], "rays") && strcmp(argv[1], "run"))) return usage();
-    rt_build_options opt = {NULL, (size_t)4 << 30, 0, 0, -1, -1};
+    rt_build_options opt = {NULL, (size_t)4 << 30, 0, 0, -1, -1, 0};
     uint32_t width = 1024, height = 1024, repeats = 3;
     for (int i = 4; i < argc; i++) {
         const char *val = i + 1 < argc ? argv[i + 1] : NULL;
@@ -166,7 +180,7 @@ int main(int argc, char **argv)
         if (ok) {
             printf("kernel rtk-%s\nload_and_build_s %.4f\nthreads_all %u\n", RT_REAL_NAME, load_s, bench_cpu_count());
             print_memory(scene);
-            ok = time_build(scene, repeats) && time_queries("primary", nearest_range, scene, w.primary, w.primary_count, repeats) &&
+            ok = time_builds(scene, repeats) && time_queries("primary", nearest_range, scene, w.primary, w.primary_count, repeats) &&
                  time_queries("shadow", any_range, scene, w.shadow, w.shadow_count, repeats);
         }
     }

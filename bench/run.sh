@@ -79,7 +79,9 @@ val_row() { awk -F '\t' -v m="$1" -v c="$2" '$1 == m { print $c; exit }' "$ROWS"
 speedup() { awk -v a="$1" -v b="$2" 'BEGIN { if (a ~ /^[0-9.]+$/ && b ~ /^[0-9.]+$/ && b > 0) printf "%.2f", a / b }'; }
 row "BVH build vs Embree 1 thread" s "$(val $D build_s)" "$(val $F build_s)" "$(val $E build_s)"
 row "BVH build vs Embree 1 thread, CPU time" s "$(val $D build_cpu_s)" "$(val $F build_cpu_s)" "$(val $E build_cpu_s)"
-row "BVH build vs Embree all threads" s "$(val $D build_s)" "$(val $F build_s)" "$(val $E build_all_s)"
+row "BVH build vs Embree all threads" s "$(val $D build_all_s)" "$(val $F build_all_s)" "$(val $E build_all_s)"
+row "BVH build speed-up $cpus/1 threads" x "$(speedup "$(val $D build_s)" "$(val $D build_all_s)")" \
+    "$(speedup "$(val $F build_s)" "$(val $F build_all_s)")" "$(speedup "$(val $E build_s)" "$(val $E build_all_s)")"
 for q in primary shadow; do
     row "$q rays, 1 thread" Mrays/s "$(val $D ${q}_mrays_1)" "$(val $F ${q}_mrays_1)" "$(val $E ${q}_mrays_1)"
     row "$q rays, 1 thread, CPU time" Mrays/s "$(val $D ${q}_mrays_1_cpu)" "$(val $F ${q}_mrays_1_cpu)" \

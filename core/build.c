@@ -218,7 +218,8 @@ static rt_status build_camera(const rt_camera_desc *c, rt_camera *cam, rt_build_
     return RT_OK;
 }
 
-rt_status rt_scene_build(const rt_scene_desc *desc, rt_arena *arena, rt_scene *out, rt_build_error *err)
+rt_status rt_scene_build(const rt_scene_desc *desc, rt_arena *arena, const rt_workers *workers, rt_scene *out,
+                         rt_build_error *err)
 {
     rt_scene s = {0};
     err->status = RT_OK;
@@ -228,7 +229,7 @@ rt_status rt_scene_build(const rt_scene_desc *desc, rt_arena *arena, rt_scene *o
     if (st == RT_OK) st = build_objects(desc, arena, &s, err);
     if (st == RT_OK) st = build_lights(desc, arena, &s, err);
     if (st == RT_OK) st = build_camera(&desc->camera, &s.camera, err);
-    if (st == RT_OK && rt_bvh_build(&s, arena) != RT_OK) st = fail(err, RT_ERR_NOMEM, "out of memory for the BVH", UINT32_MAX);
+    if (st == RT_OK && rt_bvh_build(&s, arena, workers) != RT_OK) st = fail(err, RT_ERR_NOMEM, "out of memory for the BVH", UINT32_MAX);
     if (st == RT_OK) *out = s;
     return st;
 }

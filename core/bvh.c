@@ -1,5 +1,7 @@
-/* Binned-SAH BVH build, collapsed into a 4-wide tree; see bvh.h (queries: bvh_query.c). */
+/* Binned-SAH BVH build on the caller's workers, collapsed into a 4-wide tree
+ * (bvh_collapse.c); see bvh.h (queries: bvh_query.c). */
 #include "bvh.h"
+#include "bvh_binary.h"
 
 #define BIN_COUNT 16
 /* Leaves hold LEAF_MIN references or fewer without asking, at most LEAF_MAX; in between
@@ -7,12 +9,6 @@
 #define LEAF_MIN 4
 #define LEAF_MAX 8
 #define TRAVERSAL_COST RT_C(3.0)
-
-static rt_aabb aabb_empty(void)
-{
-    rt_aabb b = {{RT_REAL_MAX, RT_REAL_MAX, RT_REAL_MAX}, {rt_neg(RT_REAL_MAX), rt_neg(RT_REAL_MAX), rt_neg(RT_REAL_MAX)}};
-    return b;
-}
 
 static rt_aabb aabb_union(rt_aabb a, rt_aabb b)
 {
@@ -24,14 +20,6 @@ static rt_aabb aabb_add_point(rt_aabb a, rt_vec3 p)
 {
     rt_aabb r = {rt_v3_min(a.lo, p), rt_v3_max(a.hi, p)};
     return r;
-}
-
-/* Half the surface area: all the SAH needs. */
-static rt_real aabb_half_area(rt_aabb b)
-{
-    if (b.lo.x > b.hi.x) return RT_ZERO;
-    rt_vec3 e = rt_v3_sub(b.hi, b.lo);
-    return rt_add(rt_add(rt_mul(e.x, e.y), rt_mul(e.y, e.z)), rt_mul(e.z, e.x));
 }
 
 /* The largest absolute coordinate of a box's corners. */
@@ -57,7 +45,7 @@ rt_aabb rt_prim_bounds(const rt_scene *scene, uint32_t prim)
 {
     if (prim < scene->triangle_count) {
         const rt_triangle *tri = &scene->triangles[prim];
-        rt_aabb b = aabb_empty();
+        rt_aabb b = rt_aabb_empty();
         for (int k = 0; k < 3; k++) b = aabb_add_point(b, scene->positions[tri->v[k]]);
         return aabb_pad(b);
     }
@@ -88,10 +76,70 @@ typedef struct {
 /* The box centre, as the binning sees the primitive. */
 static rt_vec3 centroid_of(const build_ref *r) { return rt_v3_scale(rt_v3_add(r->bounds.lo, r->bounds.hi), RT_C(0.5)); }
 
+/* How a task's centroids map to bins on each axis; a flat axis bins everything into
+ * bin 0 (scale 0) and is never priced. */
+typedef struct {
+    rt_real lo[3], scale[3];
+    bool active[3];
+} binning;
+
+/* The references binned so far, per axis and bin: the union of their bounds, their count. */
+typedef struct {
+    rt_aabb box[3][BIN_COUNT];
+    uint32_t count[3][BIN_COUNT];
+} bins;
+
+static binning binning_of(const build_task *t)
+{
+    binning g;
+    for (int axis = 0; axis < 3; axis++) {
+        g.lo[axis] = rt_v3_get(t->centroids.lo, axis);
+        rt_real hi = rt_v3_get(t->centroids.hi, axis);
+        g.active[axis] = hi > g.lo[axis];
+        g.scale[axis] = g.active[axis] ? rt_div(rt_from_int(BIN_COUNT), rt_sub(hi, g.lo[axis])) : RT_ZERO;
+    }
+    return g;
+}
+
 static int bin_of(rt_real c, rt_real lo, rt_real scale)
 {
     int32_t b = rt_floor_int(rt_mul(rt_sub(c, lo), scale));
     return b < 0 ? 0 : b >= BIN_COUNT ? BIN_COUNT - 1 : (int)b;
+}
+
+/* Bins refs[first .. first + count) into b, which starts empty. */
+static void bin_refs(bins *b, const binning *g, const build_ref *refs, uint32_t first, uint32_t count)
+{
+    for (int axis = 0; axis < 3; axis++) {
+        for (int k = 0; k < BIN_COUNT; k++) {
+            b->box[axis][k] = rt_aabb_empty();
+            b->count[axis][k] = 0;
+        }
+    }
+    for (uint32_t i = first; i < first + count; i++) {
+        rt_vec3 c = centroid_of(&refs[i]);
+        int bx = bin_of(c.x, g->lo[0], g->scale[0]), by = bin_of(c.y, g->lo[1], g->scale[1]),
+            bz = bin_of(c.z, g->lo[2], g->scale[2]);
+        b->box[0][bx] = aabb_union(b->box[0][bx], refs[i].bounds);
+        b->box[1][by] = aabb_union(b->box[1][by], refs[i].bounds);
+        b->box[2][bz] = aabb_union(b->box[2][bz], refs[i].bounds);
+        b->count[0][bx]++;
+        b->count[1][by]++;
+        b->count[2][bz]++;
+    }
+}
+
+/* Adds the bins of the references that follow those of `into`. A union of min and max
+ * keeps, on ties, the later operand, as the one-by-one pass does, so bins merged in
+ * reference order equal the bins of one pass over all of them. */
+static void merge_bins(bins *into, const bins *later)
+{
+    for (int axis = 0; axis < 3; axis++) {
+        for (int k = 0; k < BIN_COUNT; k++) {
+            into->box[axis][k] = aabb_union(into->box[axis][k], later->box[axis][k]);
+            into->count[axis][k] += later->count[axis][k];
+        }
+    }
 }
 
 typedef struct {
@@ -100,75 +148,50 @@ typedef struct {
     rt_aabb left, right;    /* the children's bounds, unions of their bins */
 } split;
 
-/* Finds the cheapest binned split of a task's references, binning all three axes in one
- * pass; false if a leaf is cheaper (and the task may be a leaf), or nothing splits. */
-static bool choose_split(const build_ref *refs, const build_task *t, split *out)
+/* The cheapest split plane between bins of a task's references; false if a leaf is
+ * cheaper (and the task may be a leaf), or nothing splits. */
+static bool price_split(const build_task *t, const binning *g, const bins *b, split *out)
 {
-    rt_aabb box[3][BIN_COUNT];
-    uint32_t n_in[3][BIN_COUNT];
-    rt_real lo[3], scale[3];
-    bool active[3];
-    for (int axis = 0; axis < 3; axis++) {
-        lo[axis] = rt_v3_get(t->centroids.lo, axis);
-        rt_real hi = rt_v3_get(t->centroids.hi, axis);
-        active[axis] = hi > lo[axis];
-        /* A flat axis bins everything into bin 0 (scale 0) and is never priced. */
-        scale[axis] = active[axis] ? rt_div(rt_from_int(BIN_COUNT), rt_sub(hi, lo[axis])) : RT_ZERO;
-        for (int b = 0; b < BIN_COUNT; b++) {
-            box[axis][b] = aabb_empty();
-            n_in[axis][b] = 0;
-        }
-    }
-    for (uint32_t i = t->first; i < t->first + t->count; i++) {
-        rt_vec3 c = centroid_of(&refs[i]);
-        int bx = bin_of(c.x, lo[0], scale[0]), by = bin_of(c.y, lo[1], scale[1]), bz = bin_of(c.z, lo[2], scale[2]);
-        box[0][bx] = aabb_union(box[0][bx], refs[i].bounds);
-        box[1][by] = aabb_union(box[1][by], refs[i].bounds);
-        box[2][bz] = aabb_union(box[2][bz], refs[i].bounds);
-        n_in[0][bx]++;
-        n_in[1][by]++;
-        n_in[2][bz]++;
-    }
     /* Costs relative to one primitive test over the task's area. */
-    rt_real best_cost = t->count > LEAF_MAX ? RT_REAL_MAX : rt_mul(rt_from_int(t->count), aabb_half_area(t->bounds));
-    rt_real visit = rt_mul(TRAVERSAL_COST, aabb_half_area(t->bounds));
+    rt_real best_cost = t->count > LEAF_MAX ? RT_REAL_MAX : rt_mul(rt_from_int(t->count), rt_aabb_half_area(t->bounds));
+    rt_real visit = rt_mul(TRAVERSAL_COST, rt_aabb_half_area(t->bounds));
     bool found = false;
     for (int axis = 0; axis < 3; axis++) {
-        if (!active[axis]) continue;
+        if (!g->active[axis]) continue;
         /* Sweep from the right to get suffix areas, then from the left to price each plane. */
         rt_real right_area[BIN_COUNT];
         uint32_t right_n[BIN_COUNT];
-        rt_aabb acc = aabb_empty();
+        rt_aabb acc = rt_aabb_empty();
         uint32_t n = 0;
-        for (int b = BIN_COUNT - 1; b > 0; b--) {
-            acc = aabb_union(acc, box[axis][b]);
-            n += n_in[axis][b];
-            right_area[b] = aabb_half_area(acc);
-            right_n[b] = n;
+        for (int k = BIN_COUNT - 1; k > 0; k--) {
+            acc = aabb_union(acc, b->box[axis][k]);
+            n += b->count[axis][k];
+            right_area[k] = rt_aabb_half_area(acc);
+            right_n[k] = n;
         }
-        acc = aabb_empty();
+        acc = rt_aabb_empty();
         n = 0;
-        for (int b = 0; b < BIN_COUNT - 1; b++) {
-            acc = aabb_union(acc, box[axis][b]);
-            n += n_in[axis][b];
-            if (n == 0 || right_n[b + 1] == 0) continue;
-            rt_real cost = rt_add(visit, rt_add(rt_mul(rt_from_int(n), aabb_half_area(acc)),
-                                                rt_mul(rt_from_int(right_n[b + 1]), right_area[b + 1])));
+        for (int k = 0; k < BIN_COUNT - 1; k++) {
+            acc = aabb_union(acc, b->box[axis][k]);
+            n += b->count[axis][k];
+            if (n == 0 || right_n[k + 1] == 0) continue;
+            rt_real cost = rt_add(visit, rt_add(rt_mul(rt_from_int(n), rt_aabb_half_area(acc)),
+                                                rt_mul(rt_from_int(right_n[k + 1]), right_area[k + 1])));
             if (cost < best_cost) {
                 best_cost = cost;
                 found = true;
                 out->axis = axis;
-                out->bin = b;
+                out->bin = k;
             }
         }
     }
     if (!found) return false;
-    out->lo = lo[out->axis];
-    out->scale = scale[out->axis];
-    out->left = out->right = aabb_empty();
-    for (int b = 0; b < BIN_COUNT; b++) {
-        rt_aabb *side = b <= out->bin ? &out->left : &out->right;
-        *side = aabb_union(*side, box[out->axis][b]);
+    out->lo = g->lo[out->axis];
+    out->scale = g->scale[out->axis];
+    out->left = out->right = rt_aabb_empty();
+    for (int k = 0; k < BIN_COUNT; k++) {
+        rt_aabb *side = k <= out->bin ? &out->left : &out->right;
+        *side = aabb_union(*side, b->box[out->axis][k]);
     }
     return true;
 }
@@ -178,7 +201,7 @@ static bool choose_split(const build_ref *refs, const build_task *t, split *out)
 static uint32_t partition(build_ref *refs, uint32_t first, uint32_t count, const split *s, rt_aabb *left_c,
                           rt_aabb *right_c)
 {
-    *left_c = *right_c = aabb_empty();
+    *left_c = *right_c = rt_aabb_empty();
     uint32_t i = first, j = first + count;
     while (i < j) {
         rt_vec3 c = centroid_of(&refs[i]);
@@ -196,193 +219,250 @@ static uint32_t partition(build_ref *refs, uint32_t first, uint32_t count, const
     return i - first;
 }
 
-/* A node of the binary tree the SAH builds, in scratch, before it is collapsed into the
- * 4-wide tree: its box as stored, and children nodes[first], nodes[first + 1] (count 0)
- * or references prim_refs[first .. first + count). */
+/* One build: the tree's scratch and its work of the moment, shared with the jobs. */
 typedef struct {
-    rt_bound box[6];
-    uint32_t first, count;
-} bin_node;
+    const rt_scene *scene;
+    const rt_workers *workers;
+    rt_bvh_plan plan;
+    build_ref *refs;
+    rt_bin_node *nodes;
+    int grid;
+    /* The references' bounds and centroid bounds, per chunk of plan.chunk. */
+    rt_aabb *chunk_bounds, *chunk_centroids;
+    /* A level of the top of the tree: its tasks, their binnings, the binned chunks, the
+     * splits found (or not), and the children made, two per task. */
+    build_task *level;
+    binning *level_binning;
+    struct bin_chunk *chunks;
+    split *level_split;
+    bool *level_splits;
+    build_task *children;
+    /* The subtrees built whole, the inner nodes each made, and a stack per worker. */
+    build_task *subtrees;
+    uint32_t *subtree_inner;
+    build_task *stacks;
+} build;
 
-static void store_box(rt_bound box[6], rt_aabb b, int grid)
+/* Some of a top task's references, binned by one job. */
+typedef struct bin_chunk {
+    uint32_t task, first, count;
+    bins bins;
+} bin_chunk;
+
+/* A subtree's stack: each split pushes two tasks and pops one, once per level. */
+#define SUBTREE_STACK (RT_BVH_MAX_DEPTH + 2)
+
+/* Stores task's node: a leaf, or, given its split s, an inner node whose two children
+ * (written to kids) get their references by partition. */
+static void make_node(const build *b, const build_task *task, const split *s, build_task kids[2])
 {
-    box[0] = rt_bound_below(b.lo.x, grid);
-    box[1] = rt_bound_below(b.lo.y, grid);
-    box[2] = rt_bound_below(b.lo.z, grid);
-    box[3] = rt_bound_above(b.hi.x, grid);
-    box[4] = rt_bound_above(b.hi.y, grid);
-    box[5] = rt_bound_above(b.hi.z, grid);
+    rt_bin_node *node = &b->nodes[task->node];
+    rt_bvh_store_box(node->box, task->bounds, b->grid);
+    node->first = task->first;
+    node->count = task->count;
+    if (!s) return;
+    rt_aabb left_c, right_c;
+    /* A split plane has references on both sides (price_split), so 0 < left_n < count. */
+    uint32_t left_n = partition(b->refs, task->first, task->count, s, &left_c, &right_c);
+    uint32_t left = 2 * (task->first + left_n) - 1;
+    node->first = left;
+    node->count = 0;
+    kids[0] = (build_task){left, task->first, left_n, task->depth + 1, s->left, left_c};
+    kids[1] = (build_task){left + 1, task->first + left_n, task->count - left_n, task->depth + 1, s->right, right_c};
 }
 
-static rt_aabb stored_box(rt_bound lo_x, rt_bound lo_y, rt_bound lo_z, rt_bound hi_x, rt_bound hi_y, rt_bound hi_z,
-                          int g)
+/* Builds the subtree of root depth first on one worker; returns its inner node count. */
+static uint32_t build_subtree(const build *b, build_task root, build_task *stack)
 {
-    rt_aabb r = {rt_v3(rt_bound_value(lo_x, g), rt_bound_value(lo_y, g), rt_bound_value(lo_z, g)),
-                 rt_v3(rt_bound_value(hi_x, g), rt_bound_value(hi_y, g), rt_bound_value(hi_z, g))};
-    return r;
-}
-
-rt_aabb rt_bvh_child_box(const rt_bvh *bvh, const rt_bvh_node *node, int c)
-{
-    return stored_box(node->box[0][c], node->box[1][c], node->box[2][c], node->box[3][c], node->box[4][c],
-                      node->box[5][c], bvh->grid);
-}
-
-static rt_aabb bin_box(const bin_node *n, int g)
-{
-    return stored_box(n->box[0], n->box[1], n->box[2], n->box[3], n->box[4], n->box[5], g);
-}
-
-/* Builds the binary SAH tree over n > 0 references into bin (room for 2n - 1 nodes);
- * returns its node count. refs end up in leaf order. */
-static uint32_t build_binary(const rt_scene *scene, build_ref *refs, uint32_t n, bin_node *bin, build_task *stack,
-                             int *grid)
-{
-    build_task root = {0, 0, n, 1, aabb_empty(), aabb_empty()};
-    for (uint32_t i = 0; i < n; i++) {
-        refs[i].bounds = rt_prim_bounds(scene, i);
-        refs[i].prim = i;
-        root.bounds = aabb_union(root.bounds, refs[i].bounds);
-        root.centroids = aabb_add_point(root.centroids, centroid_of(&refs[i]));
-    }
-    *grid = rt_bound_grid(aabb_magnitude(root.bounds));
-    uint32_t count = 1, top = 0;
+    uint32_t inner = 0, top = 0;
     stack[top++] = root;
     while (top > 0) {
-        build_task task = stack[--top];
-        bin_node *node = &bin[task.node];
-        store_box(node->box, task.bounds, *grid);
-        node->first = task.first;
-        node->count = task.count;
+        build_task task = stack[--top], kids[2];
         split s;
-        if (task.count <= LEAF_MIN || task.depth >= RT_BVH_MAX_DEPTH || !choose_split(refs, &task, &s)) continue;
-        rt_aabb left_c, right_c;
-        uint32_t left_n = partition(refs, task.first, task.count, &s, &left_c, &right_c);
-        uint32_t left = count;
-        count += 2;
-        node->first = left;
-        node->count = 0;
-        /* Push right first so the left subtree is built next (depth-first, bounded stack). */
-        stack[top++] = (build_task){left + 1, task.first + left_n, task.count - left_n, task.depth + 1, s.right, right_c};
-        stack[top++] = (build_task){left, task.first, left_n, task.depth + 1, s.left, left_c};
-    }
-    return count;
-}
-
-/* Up to RT_BVH_WIDTH binary nodes that together cover binary node b's references: its
- * children, then repeatedly the largest-area inner one replaced by its own two. */
-static int gather_children(const bin_node *bin, uint32_t b, int grid, uint32_t out[RT_BVH_WIDTH])
-{
-    if (bin[b].count > 0) {
-        out[0] = b; /* a leaf root: one leaf child */
-        return 1;
-    }
-    int n = 2;
-    out[0] = bin[b].first;
-    out[1] = bin[b].first + 1;
-    while (n < RT_BVH_WIDTH) {
-        int widest = -1;
-        rt_real widest_area = RT_ZERO;
-        for (int c = 0; c < n; c++) {
-            rt_real area = aabb_half_area(bin_box(&bin[out[c]], grid));
-            if (bin[out[c]].count == 0 && (widest < 0 || area > widest_area)) widest = c, widest_area = area;
+        bool splits = false;
+        if (task.count > LEAF_MIN && task.depth < RT_BVH_MAX_DEPTH) {
+            binning g = binning_of(&task);
+            bins all;
+            bin_refs(&all, &g, b->refs, task.first, task.count);
+            splits = price_split(&task, &g, &all, &s);
         }
-        if (widest < 0) break;
-        uint32_t opened = out[widest];
-        out[widest] = bin[opened].first;
-        out[n++] = bin[opened].first + 1;
+        make_node(b, &task, splits ? &s : NULL, kids);
+        if (!splits) continue;
+        inner++;
+        /* Right first, so the left subtree is built next (a bounded stack). */
+        stack[top++] = kids[1];
+        stack[top++] = kids[0];
     }
-    return n;
+    return inner;
 }
 
-static void clear_slot(rt_bvh_node *node, int c, int grid)
+static uint32_t min_u32(uint32_t a, uint32_t b) { return a < b ? a : b; }
+
+static void bound_refs_job(void *arg, uint32_t index, uint32_t worker)
 {
-    rt_bound empty[6];
-    store_box(empty, aabb_empty(), grid);
-    for (int k = 0; k < 6; k++) node->box[k][c] = empty[k];
-    node->child[c] = 0;
-    node->count[c] = RT_BVH_NO_CHILD;
+    (void)worker;
+    build *b = arg;
+    uint32_t first = index * b->plan.chunk, end = first + min_u32(b->plan.chunk, b->scene->prim_count - first);
+    rt_aabb bounds = rt_aabb_empty(), centroids = rt_aabb_empty();
+    for (uint32_t i = first; i < end; i++) {
+        b->refs[i].bounds = rt_prim_bounds(b->scene, i);
+        b->refs[i].prim = i;
+        bounds = aabb_union(bounds, b->refs[i].bounds);
+        centroids = aabb_add_point(centroids, centroid_of(&b->refs[i]));
+    }
+    b->chunk_bounds[index] = bounds;
+    b->chunk_centroids[index] = centroids;
 }
 
-/* Collapses the binary tree into wide nodes at `wide` (room for one per binary inner
- * node, and one); returns the wide node count. Nodes are numbered depth first. */
-typedef struct {
-    uint32_t bin, wide, depth;
-} collapse_task;
-
-/* Each wide level pushes at most RT_BVH_WIDTH tasks, over at most RT_BVH_MAX_DEPTH levels. */
-#define COLLAPSE_STACK (RT_BVH_MAX_DEPTH * RT_BVH_WIDTH + 1)
-
-static uint32_t collapse(const bin_node *bin, int grid, rt_bvh_node *wide, collapse_task *stack, uint32_t *depth)
+static void bin_chunk_job(void *arg, uint32_t index, uint32_t worker)
 {
-    uint32_t top = 0, count = 1;
-    stack[top++] = (collapse_task){0, 0, 1};
-    *depth = 1;
-    while (top > 0) {
-        collapse_task t = stack[--top];
-        rt_bvh_node *node = &wide[t.wide];
-        uint32_t kids[RT_BVH_WIDTH];
-        int n = gather_children(bin, t.bin, grid, kids);
-        for (int c = RT_BVH_WIDTH - 1; c >= 0; c--) {
-            if (c >= n) {
-                clear_slot(node, c, grid);
-                continue;
-            }
-            const bin_node *kid = &bin[kids[c]];
-            for (int k = 0; k < 6; k++) node->box[k][c] = kid->box[k];
-            if (t.depth + 1 > *depth) *depth = t.depth + 1;
-            node->count[c] = kid->count;
-            if (kid->count > 0) {
-                node->child[c] = kid->first;
-                continue;
-            }
-            node->child[c] = count;
-            stack[top++] = (collapse_task){kids[c], count++, t.depth + 1};
+    (void)worker;
+    build *b = arg;
+    bin_chunk *c = &b->chunks[index];
+    bin_refs(&c->bins, &b->level_binning[c->task], b->refs, c->first, c->count);
+}
+
+static void split_level_job(void *arg, uint32_t index, uint32_t worker)
+{
+    (void)worker;
+    build *b = arg;
+    make_node(b, &b->level[index], b->level_splits[index] ? &b->level_split[index] : NULL, &b->children[2 * index]);
+}
+
+static void subtree_job(void *arg, uint32_t index, uint32_t worker)
+{
+    build *b = arg;
+    b->subtree_inner[index] = build_subtree(b, b->subtrees[index], &b->stacks[(size_t)worker * SUBTREE_STACK]);
+}
+
+/* Whether the top phase splits task, level by level, rather than one job building it whole. */
+static bool is_top(const build *b, const build_task *task)
+{
+    return task->count > b->plan.split_above && task->count > LEAF_MIN && task->depth < RT_BVH_MAX_DEPTH;
+}
+
+/* Splits one level of top tasks (b->level[0 .. count)): bins them in chunks, prices the
+ * merged bins, partitions each task in its own job; the children that are top tasks
+ * again become the next level (returned count), the others join the subtrees. */
+static uint32_t split_level(build *b, uint32_t count, uint32_t *subtrees, uint32_t *inner)
+{
+    uint32_t chunks = 0;
+    for (uint32_t t = 0; t < count; t++) {
+        b->level_binning[t] = binning_of(&b->level[t]);
+        uint32_t end = b->level[t].first + b->level[t].count;
+        for (uint32_t first = b->level[t].first; first < end;) {
+            bin_chunk *c = &b->chunks[chunks++];
+            c->task = t;
+            c->first = first;
+            c->count = min_u32(b->plan.chunk, end - first);
+            first += c->count;
         }
     }
-    return count;
+    rt_workers_run(b->workers, bin_chunk_job, b, chunks);
+    for (uint32_t t = 0, c = 0; t < count; t++) {
+        bins *all = &b->chunks[c++].bins;
+        while (c < chunks && b->chunks[c].task == t) merge_bins(all, &b->chunks[c++].bins);
+        b->level_splits[t] = price_split(&b->level[t], &b->level_binning[t], all, &b->level_split[t]);
+    }
+    rt_workers_run(b->workers, split_level_job, b, count);
+    uint32_t next = 0;
+    for (uint32_t t = 0; t < count; t++) {
+        if (!b->level_splits[t]) continue;
+        (*inner)++;
+        for (int k = 0; k < 2; k++) {
+            const build_task *kid = &b->children[2 * t + k];
+            if (is_top(b, kid)) b->level[next++] = *kid;
+            else b->subtrees[(*subtrees)++] = *kid;
+        }
+    }
+    return next;
 }
 
-/* The wide nodes start on a 64-byte boundary: each is two whole cache lines. */
-static rt_bvh_node *alloc_nodes(rt_arena *arena, size_t count)
+rt_bvh_plan rt_bvh_default_plan(void)
 {
-    return rt_arena_alloc_aligned(arena, count * sizeof(rt_bvh_node), 64);
+    /* About 50 top tasks and 50 subtrees for a million references; a chunk bins in
+     * about a millisecond. */
+    rt_bvh_plan p = {16384, 16384};
+    return p;
+}
+
+/* Allocates the top phase's arrays for n references (their sizes are bounds: a level's
+ * top tasks are disjoint and larger than split_above, and there are at most
+ * RT_BVH_MAX_DEPTH levels). */
+static bool alloc_top(build *b, rt_arena *arena, uint32_t n)
+{
+    size_t level = n / ((size_t)b->plan.split_above + 1) + 1;
+    b->level = rt_arena_alloc(arena, level * sizeof *b->level);
+    b->level_binning = rt_arena_alloc(arena, level * sizeof *b->level_binning);
+    b->level_split = rt_arena_alloc(arena, level * sizeof *b->level_split);
+    b->level_splits = rt_arena_alloc(arena, level * sizeof *b->level_splits);
+    b->children = rt_arena_alloc(arena, 2 * level * sizeof *b->children);
+    b->chunks = rt_arena_alloc(arena, (n / b->plan.chunk + level) * sizeof *b->chunks);
+    size_t subtrees = 2 * RT_BVH_MAX_DEPTH * level + 1;
+    if (subtrees > n) subtrees = n;
+    b->subtrees = rt_arena_alloc(arena, subtrees * sizeof *b->subtrees);
+    b->subtree_inner = rt_arena_alloc(arena, subtrees * sizeof *b->subtree_inner);
+    return b->level && b->level_binning && b->level_split && b->level_splits && b->children && b->chunks &&
+           b->subtrees && b->subtree_inner;
+}
+
+/* Builds the binary tree over n > 0 references into b->nodes; returns its inner node count. */
+static uint32_t build_binary(build *b, uint32_t n)
+{
+    uint32_t chunks = (n - 1) / b->plan.chunk + 1;
+    rt_workers_run(b->workers, bound_refs_job, b, chunks);
+    build_task root = {0, 0, n, 1, rt_aabb_empty(), rt_aabb_empty()};
+    for (uint32_t c = 0; c < chunks; c++) {
+        root.bounds = aabb_union(root.bounds, b->chunk_bounds[c]);
+        root.centroids = aabb_union(root.centroids, b->chunk_centroids[c]);
+    }
+    b->grid = rt_bound_grid(aabb_magnitude(root.bounds));
+    uint32_t inner = 0, subtrees = 0, level = 0;
+    if (is_top(b, &root)) b->level[level++] = root;
+    else b->subtrees[subtrees++] = root;
+    while (level > 0) level = split_level(b, level, &subtrees, &inner);
+    rt_workers_run(b->workers, subtree_job, b, subtrees);
+    for (uint32_t s = 0; s < subtrees; s++) inner += b->subtree_inner[s];
+    return inner;
 }
 
 /* The binary tree and the wide one are made in scratch above the arena's mark; then the
  * arena is reset and the wide nodes are copied down to the mark, at their final size. */
-rt_status rt_bvh_build(rt_scene *scene, rt_arena *arena)
+rt_status rt_bvh_build_planned(rt_scene *scene, rt_arena *arena, const rt_workers *workers, rt_bvh_plan plan)
 {
     uint32_t n = scene->prim_count;
     rt_bvh *bvh = &scene->bvh;
     bvh->prim_refs = RT_NEW_ARRAY(arena, uint32_t, n > 0 ? n : 1);
     if (!bvh->prim_refs) return RT_ERR_NOMEM;
+    if (n == 0) return rt_bvh_empty(bvh, arena);
+    if (plan.split_above < 1) plan.split_above = 1;
+    if (plan.chunk < 1) plan.chunk = 1;
     size_t mark = rt_arena_mark(arena);
-    uint32_t bin_count = 1;
-    bvh->grid = rt_bound_grid(RT_ONE);
+    build b = {.scene = scene, .workers = workers, .plan = plan};
+    size_t chunks = (n - 1) / plan.chunk + 1;
     /* Every node and reference is written before it is read: no zeroing. */
-    bin_node *bin = rt_arena_alloc(arena, (n > 0 ? 2 * (size_t)n - 1 : 1) * sizeof(bin_node));
-    build_ref *refs = n > 0 ? rt_arena_alloc(arena, (size_t)n * sizeof(build_ref)) : NULL;
-    build_task *stack = RT_NEW_ARRAY(arena, build_task, RT_BVH_MAX_DEPTH + 2);
-    if (!bin || (n > 0 && !refs) || !stack) return RT_ERR_NOMEM;
-    if (n > 0) bin_count = build_binary(scene, refs, n, bin, stack, &bvh->grid);
-    for (uint32_t i = 0; i < n; i++) bvh->prim_refs[i] = refs[i].prim;
-    /* At most one wide node per binary inner node, or one. */
-    rt_bvh_node *wide = alloc_nodes(arena, bin_count / 2 + 1);
-    collapse_task *tasks = RT_NEW_ARRAY(arena, collapse_task, COLLAPSE_STACK);
-    if (!wide || !tasks) return RT_ERR_NOMEM;
-    uint32_t depth = 1;
-    if (n > 0) {
-        bvh->node_count = collapse(bin, bvh->grid, wide, tasks, &depth);
-    } else { /* no primitives: a root without children */
-        bvh->node_count = 1;
-        for (int c = 0; c < RT_BVH_WIDTH; c++) clear_slot(wide, c, bvh->grid);
-    }
-    bvh->depth = depth;
+    b.nodes = rt_arena_alloc(arena, (2 * (size_t)n - 1) * sizeof *b.nodes);
+    b.refs = rt_arena_alloc(arena, (size_t)n * sizeof *b.refs);
+    b.chunk_bounds = rt_arena_alloc(arena, chunks * sizeof *b.chunk_bounds);
+    b.chunk_centroids = rt_arena_alloc(arena, chunks * sizeof *b.chunk_centroids);
+    b.stacks = rt_arena_alloc(arena, (size_t)rt_worker_count(workers) * SUBTREE_STACK * sizeof *b.stacks);
+    if (!b.nodes || !b.refs || !b.chunk_bounds || !b.chunk_centroids || !b.stacks || !alloc_top(&b, arena, n))
+        return RT_ERR_NOMEM;
+    uint32_t inner = build_binary(&b, n);
+    bvh->grid = b.grid;
+    for (uint32_t i = 0; i < n; i++) bvh->prim_refs[i] = b.refs[i].prim;
+    rt_status st = rt_bvh_collapse(b.nodes, inner, bvh, arena);
+    if (st != RT_OK) return st;
+    const rt_bvh_node *wide = bvh->nodes;
     rt_arena_reset(arena, mark);
-    bvh->nodes = alloc_nodes(arena, bvh->node_count);
+    bvh->nodes = rt_arena_alloc_aligned(arena, bvh->node_count * sizeof(rt_bvh_node), 64);
     /* Below the scratch copy, which starts past the binary tree: a forward copy never
      * overwrites a node it has yet to read. */
     for (uint32_t i = 0; i < bvh->node_count; i++) bvh->nodes[i] = wide[i];
     return RT_OK;
+}
+
+rt_status rt_bvh_build(rt_scene *scene, rt_arena *arena, const rt_workers *workers)
+{
+    return rt_bvh_build_planned(scene, arena, workers, rt_bvh_default_plan());
 }

@@ -6,6 +6,7 @@
 
 #include "intersect.h"
 #include "scene.h"
+#include "workers.h"
 
 /* Deepest binary tree the builder makes (the 4-wide tree is at most as deep);
  * traversal stacks are sized by it. */
@@ -16,8 +17,21 @@ typedef struct {
     uint32_t prim; /* primitive reference (see rt_scene) */
 } rt_scene_hit;
 
-/* Builds scene->bvh over scene->prim_count primitives. Scratch comes from the arena too. */
-rt_status rt_bvh_build(rt_scene *scene, rt_arena *arena);
+/* How the build divides its work into jobs. Every plan gives the same tree, bit for bit:
+ * a plan only decides which parts may run at once. */
+typedef struct {
+    /* Tasks of more references than this are split one level at a time, each split a job
+     * of its own; smaller ones are built whole, one job each. */
+    uint32_t split_above;
+    uint32_t chunk; /* references per job where a task's references are bounded or binned */
+} rt_bvh_plan;
+
+rt_bvh_plan rt_bvh_default_plan(void);
+
+/* Builds scene->bvh over scene->prim_count primitives, with the default plan, on the
+ * workers (NULL: on this thread). Scratch comes from the arena too. */
+rt_status rt_bvh_build(rt_scene *scene, rt_arena *arena, const rt_workers *workers);
+rt_status rt_bvh_build_planned(rt_scene *scene, rt_arena *arena, const rt_workers *workers, rt_bvh_plan plan);
 
 /* Child c's box as stored (holding the exact bounds it was built from). */
 rt_aabb rt_bvh_child_box(const rt_bvh *bvh, const rt_bvh_node *node, int c);

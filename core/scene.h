@@ -7,6 +7,7 @@
 #include "arena.h"
 #include "status.h"
 #include "vec.h"
+#include "workers.h"
 
 #define RT_NO_TEXTURE UINT32_MAX
 #define RT_MAX_SUBDIVISION 5
@@ -195,8 +196,10 @@ typedef struct {
     uint32_t object;   /* the offending object (or light) index, or UINT32_MAX */
 } rt_build_error;
 
-/* Copies desc into the arena, transforms meshes to world space, subdivides, builds the BVH. */
-rt_status rt_scene_build(const rt_scene_desc *desc, rt_arena *arena, rt_scene *out, rt_build_error *err);
+/* Copies desc into the arena, transforms meshes to world space, subdivides, builds the
+ * BVH on the workers (NULL: on this thread; the scene is the same either way). */
+rt_status rt_scene_build(const rt_scene_desc *desc, rt_arena *arena, const rt_workers *workers, rt_scene *out,
+                         rt_build_error *err);
 
 /* The built-in meshes of the format: the Cube (24 vertices, 12 triangles) and the
  * Plane's unit square in XY. The arrays are constant tables. */

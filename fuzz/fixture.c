@@ -10,7 +10,7 @@ rt_status fz_build(const rt_scene_desc *desc, rt_scene *out, rt_build_error *err
 {
     rt_arena arena;
     rt_arena_init(&arena, arena_memory, sizeof arena_memory);
-    return rt_scene_build(desc, &arena, out, err);
+    return rt_scene_build(desc, &arena, NULL, out, err);
 }
 
 rt_camera_desc fz_camera(void)

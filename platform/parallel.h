@@ -1,4 +1,5 @@
-/* Renders a built scene on worker threads, tile by tile, with an optional progress bar. */
+/* Worker threads: the core's job sets (workers.h) and the tile renderer, with an
+ * optional progress bar. */
 #ifndef RT_PARALLEL_H
 #define RT_PARALLEL_H
 
@@ -18,5 +19,13 @@ typedef struct {
  * (then rgb is incomplete and must not be used). The pixels never depend on the thread
  * count, tile size or scheduling: each pixel is a function of the scene alone. */
 bool rt_render_parallel(const rt_tracer *tr, const rt_parallel_options *opt, uint8_t *rgb);
+
+/* The number of threads a request stands for: itself, or one per online CPU for 0. */
+uint32_t rt_thread_count(uint32_t requested);
+
+/* Workers for the core's job sets on up to `threads` POSIX threads (0: one per online
+ * CPU), the calling thread among them. A thread that cannot start leaves its share to
+ * the others, so a job set always completes. */
+rt_workers rt_thread_workers(uint32_t threads);
 
 #endif

@@ -29,7 +29,8 @@ static const char usage[] =
     "\n"
     "  -o, --output FILE   image to write (optional with --hash)\n"
     RT_SCENE_OPTIONS_HELP
-    "  --threads N         worker threads (default: all cores); the image does not depend on it\n"
+    "  --threads N         worker threads for the BVH build and the render (default: all\n"
+    "                      cores); the image does not depend on it\n"
     "  --tile N            tile side in pixels (default 32); the image does not depend on it\n"
     "  --hash              print the render hash (SHA-256 of the P6 PPM bytes) on stdout\n"
     "  --no-bvh            test every primitive for every ray (slow; the image is identical)\n"
@@ -63,7 +64,7 @@ static int parse_args(int argc, char **argv, render_args *a)
             a->output = val, i++;
         } else if (!strcmp(arg, "--threads")) {
             if (!rt_parse_u32(val, 1, 1024, &n)) return rt_usage_error("render", "expected 1..1024 after", arg);
-            a->parallel.threads = n, i++;
+            a->parallel.threads = a->build.threads = n, i++;
         } else if (!strcmp(arg, "--tile")) {
             if (!rt_parse_u32(val, 1, 4096, &n)) return rt_usage_error("render", "expected 1..4096 after", arg);
             a->parallel.tile_size = n, i++;

@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include "exit_codes.h"
+#include "parallel.h"
 
 static void apply_overrides(rt_scene_desc *d, const rt_build_options *opt)
 {
@@ -36,7 +37,8 @@ int rt_scene_open(const char *path, const rt_build_options *opt, rt_built_scene 
         }
         rt_arena_init(&out->arena, out->memory, size);
         rt_build_error be;
-        rt_status st = rt_scene_build(&out->loaded.desc, &out->arena, &out->scene, &be);
+        rt_workers workers = rt_thread_workers(opt->threads);
+        rt_status st = rt_scene_build(&out->loaded.desc, &out->arena, &workers, &out->scene, &be);
         if (st == RT_OK) return RT_EXIT_OK;
         free(out->memory);
         out->memory = NULL;

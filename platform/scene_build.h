@@ -12,6 +12,7 @@ typedef struct {
     uint32_t width, height;
     int32_t depth;           /* -1: keep the file's Maximum Recursion Depth */
     int32_t aa;              /* -1: keep the file's Samples Per Pixel index */
+    uint32_t threads;        /* for the BVH build; 0: one per online CPU */
 } rt_build_options;
 
 typedef struct {

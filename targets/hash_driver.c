@@ -49,7 +49,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "%s: not a scene blob of this build (%s)\n", argv[1], rt_status_name(st));
         return 3;
     }
-    if (rt_scene_build(&desc, &arena, &scene, &err) != RT_OK) {
+    if (rt_scene_build(&desc, &arena, NULL, &scene, &err) != RT_OK) {
         fprintf(stderr, "%s: %s\n", argv[1], err.what);
         return 3;
     }

@@ -1,7 +1,10 @@
-/* The BVH returns exactly what testing every primitive returns (core/bvh.c). */
+/* The BVH returns exactly what testing every primitive returns (core/bvh.c), and its
+ * tree does not depend on the build's plan or workers. */
 #include <criterion/criterion.h>
 #include <stdlib.h>
+#include <string.h>
 #include "bvh.h"
+#include "parallel.h"
 
 static uint64_t lcg_state;
 static double next_unit(void)
@@ -11,8 +14,9 @@ static double next_unit(void)
 }
 static double next_range(double lo, double hi) { return lo + (hi - lo) * next_unit(); }
 
-/* A random soup of triangles and spheres; memory from a malloc'd arena. */
-static void random_scene(rt_scene *s, void **memory, uint32_t triangles, uint32_t spheres)
+/* A random soup of triangles and spheres, the spheres' centres scaled by spread; memory
+ * from a malloc'd arena. */
+static void random_scene(rt_scene *s, void **memory, uint32_t triangles, uint32_t spheres, double spread)
 {
     size_t size = 64u << 20;
     *memory = malloc(size);
@@ -33,7 +37,8 @@ static void random_scene(rt_scene *s, void **memory, uint32_t triangles, uint32_
     for (uint32_t i = 1; i <= spheres; i++) {
         objs[i].kind = RT_SHAPE_SPHERE;
         rt_real r = next_range(0.2, 2);
-        objs[i].world = rt_affine_trs(rt_v3(next_range(-10, 10), next_range(-10, 10), next_range(-10, 10)),
+        rt_vec3 centre = rt_v3(next_range(-10, 10) * spread, next_range(-10, 10) * spread, next_range(-10, 10) * spread);
+        objs[i].world = rt_affine_trs(centre,
                                       rt_v3(0, 0, 0), rt_v3(r, r * 0.5, r));
     }
     material.index_of_refraction = 1;
@@ -50,7 +55,7 @@ static void random_scene(rt_scene *s, void **memory, uint32_t triangles, uint32_
     d.camera.fov_degrees = 50;
     d.camera.width = d.camera.height = 8;
     rt_build_error err;
-    cr_assert_eq(rt_scene_build(&d, &arena, s, &err), RT_OK, "%s", err.what);
+    cr_assert_eq(rt_scene_build(&d, &arena, NULL, s, &err), RT_OK, "%s", err.what);
     free(pos);
     free(idx);
     free(objs);
@@ -70,7 +75,7 @@ Test(bvh, nearest_hit_equals_brute_force)
     lcg_state = 42;
     rt_scene s;
     void *memory;
-    random_scene(&s, &memory, 2000, 50);
+    random_scene(&s, &memory, 2000, 50, 1);
     cr_assert_gt(s.bvh.node_count, 100);
     cr_assert_leq(s.bvh.depth, RT_BVH_MAX_DEPTH);
     int hits = 0;
@@ -96,7 +101,7 @@ Test(bvh, any_hit_agrees_with_nearest)
     lcg_state = 5;
     rt_scene s;
     void *memory;
-    random_scene(&s, &memory, 2000, 50);
+    random_scene(&s, &memory, 2000, 50, 1);
     int hits = 0, misses = 0;
     for (int i = 0; i < 20000; i++) {
         rt_ray r = random_ray();
@@ -120,7 +125,7 @@ Test(bvh, axis_aligned_rays_equal_brute_force)
     lcg_state = 99;
     rt_scene s;
     void *memory;
-    random_scene(&s, &memory, 1000, 30);
+    random_scene(&s, &memory, 1000, 30, 1);
     static const double dirs[][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1},
                                      {0.6, 0.8, 0}, {0, -0.6, 0.8}, {-0.8, 0, -0.6}};
     int hits = 0;
@@ -148,7 +153,7 @@ Test(bvh, every_reference_appears_once)
     lcg_state = 7;
     rt_scene s;
     void *memory;
-    random_scene(&s, &memory, 500, 20);
+    random_scene(&s, &memory, 500, 20, 1);
     uint8_t *seen = calloc(s.prim_count, 1);
     for (uint32_t n = 0; n < s.bvh.node_count; n++) {
         const rt_bvh_node *node = &s.bvh.nodes[n];
@@ -159,5 +164,71 @@ Test(bvh, every_reference_appears_once)
     }
     for (uint32_t p = 0; p < s.prim_count; p++) cr_assert_eq(seen[p], 1, "primitive %u in %u leaves", p, seen[p]);
     free(seen);
+    free(memory);
+}
+
+/* Workers that run a job set backwards, every job on a different worker index than the
+ * last: the order no platform uses, so results that depended on order would show. */
+static void run_backwards(const rt_workers *w, rt_job_fn *job, void *arg, uint32_t jobs)
+{
+    for (uint32_t i = jobs; i-- > 0;) job(arg, i, i % w->count);
+}
+
+/* Rebuilds s's tree with the plan and workers and asserts it equals s's, byte for byte. */
+static void assert_same_tree(const rt_scene *s, rt_bvh_plan plan, const rt_workers *w, const char *what)
+{
+    size_t size = 32u << 20;
+    void *memory = malloc(size);
+    rt_arena arena;
+    rt_arena_init(&arena, memory, size);
+    rt_scene copy = *s;
+    cr_assert_eq(rt_bvh_build_planned(&copy, &arena, w, plan), RT_OK, "%s", what);
+    cr_assert_eq(copy.bvh.node_count, s->bvh.node_count, "%s, plan %u/%u: node count", what, plan.split_above,
+                 plan.chunk);
+    cr_assert_eq(copy.bvh.depth, s->bvh.depth, "%s: depth", what);
+    cr_assert_eq(copy.bvh.grid, s->bvh.grid, "%s: grid", what);
+    cr_assert(!memcmp(copy.bvh.nodes, s->bvh.nodes, s->bvh.node_count * sizeof(rt_bvh_node)),
+              "%s, plan %u/%u: nodes differ", what, plan.split_above, plan.chunk);
+    cr_assert(!memcmp(copy.bvh.prim_refs, s->bvh.prim_refs, s->prim_count * sizeof(uint32_t)),
+              "%s, plan %u/%u: references differ", what, plan.split_above, plan.chunk);
+    free(memory);
+}
+
+/* The scene build (default plan; 3050 references are built as one job) is the reference:
+ * splitting the top of the tree level by level, binning in chunks of any size, and
+ * running the jobs on threads or backwards give the same tree. */
+Test(bvh, tree_does_not_depend_on_plan_or_workers)
+{
+    lcg_state = 11;
+    rt_scene s;
+    void *memory;
+    random_scene(&s, &memory, 3000, 50, 1);
+    cr_assert_gt(s.bvh.node_count, 200);
+    static const rt_bvh_plan plans[] = {{1, 1}, {4, 3}, {9, 1000}, {64, 64}, {300, 17}, {1000, 5000}, {3049, 1}};
+    rt_workers threads[] = {rt_thread_workers(1), rt_thread_workers(2), rt_thread_workers(3), rt_thread_workers(7)};
+    rt_workers backwards = {5, run_backwards, NULL};
+    for (size_t p = 0; p < sizeof plans / sizeof plans[0]; p++) {
+        assert_same_tree(&s, plans[p], NULL, "on this thread");
+        assert_same_tree(&s, plans[p], &backwards, "backwards");
+        for (size_t t = 0; t < sizeof threads / sizeof threads[0]; t++) assert_same_tree(&s, plans[p], &threads[t], "threads");
+    }
+    free(memory);
+}
+
+/* One primitive, and 40 spheres about one centre (no axis to bin on: one leaf of 40),
+ * under a plan that splits everything it can. */
+Test(bvh, degenerate_scenes_under_every_plan)
+{
+    lcg_state = 3;
+    rt_scene s;
+    void *memory;
+    rt_workers two = rt_thread_workers(2);
+    random_scene(&s, &memory, 1, 0, 1);
+    assert_same_tree(&s, (rt_bvh_plan){1, 1}, &two, "one triangle");
+    free(memory);
+    random_scene(&s, &memory, 0, 40, 0);
+    cr_assert_eq(s.bvh.node_count, 1);
+    cr_assert_eq(s.bvh.nodes[0].count[0], 40, "one leaf of every sphere");
+    assert_same_tree(&s, (rt_bvh_plan){2, 3}, &two, "coincident spheres");
     free(memory);
 }

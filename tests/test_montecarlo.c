@@ -68,7 +68,7 @@ static void build(const rt_scene_desc *d, built_scene *b)
     rt_arena arena;
     rt_arena_init(&arena, b->memory, size);
     rt_build_error err;
-    cr_assert_eq(rt_scene_build(d, &arena, &b->scene, &err), RT_OK, "build: %s", err.what);
+    cr_assert_eq(rt_scene_build(d, &arena, NULL, &b->scene, &err), RT_OK, "build: %s", err.what);
 }
 
 /* The inside of a sphere of radius 5 around a camera at the origin: every camera ray

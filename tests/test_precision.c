@@ -164,7 +164,7 @@ Test(precision, a_slivers_normals_are_unit_length)
     rt_arena_init(&arena, memory, size);
     rt_scene scene;
     rt_build_error err;
-    cr_assert_eq(rt_scene_build(&d, &arena, &scene, &err), RT_OK, "%s", err.what);
+    cr_assert_eq(rt_scene_build(&d, &arena, NULL, &scene, &err), RT_OK, "%s", err.what);
     rt_ray ray = {v3d(0.2499, 1.0, 0.2495), v3d(0, -1, 0), RT_HIT_EPSILON, RT_REAL_MAX};
     rt_scene_hit hit = {0};
     hit.prim = 0;

@@ -42,7 +42,7 @@ int main(void)
         rt_board_print("rtk: the linked scene is not a fixed-build blob\n");
         return 1;
     }
-    if (rt_scene_build(&desc, &arena, &scene, &err) != RT_OK) {
+    if (rt_scene_build(&desc, &arena, NULL, &scene, &err) != RT_OK) {
         rt_board_print("rtk: scene build failed: ");
         rt_board_print(err.what);
         rt_board_print("\n");

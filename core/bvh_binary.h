@@ -1,0 +1,41 @@
+/* The binary tree the SAH build makes in scratch (bvh.c), before it is collapsed into
+ * the 4-wide tree the queries walk (bvh_collapse.c). Core-internal. */
+#ifndef RT_BVH_BINARY_H
+#define RT_BVH_BINARY_H
+
+#include "bvh.h"
+
+/* A binary node: its box as stored, and children nodes[first], nodes[first + 1]
+ * (count 0) or references prim_refs[first .. first + count). The root is node 0; the
+ * children of a node whose references split at index m (into [.., m) and [m, ..)) are
+ * nodes 2m - 1 and 2m, so every node's place follows from the tree alone and separate
+ * subtrees can be built at once without sharing a counter. */
+typedef struct {
+    rt_bound box[6];
+    uint32_t first, count;
+} rt_bin_node;
+
+static inline rt_aabb rt_aabb_empty(void)
+{
+    rt_aabb b = {{RT_REAL_MAX, RT_REAL_MAX, RT_REAL_MAX}, {rt_neg(RT_REAL_MAX), rt_neg(RT_REAL_MAX), rt_neg(RT_REAL_MAX)}};
+    return b;
+}
+
+/* Half the surface area: all the SAH needs. */
+static inline rt_real rt_aabb_half_area(rt_aabb b)
+{
+    if (b.lo.x > b.hi.x) return RT_ZERO;
+    rt_vec3 e = rt_v3_sub(b.hi, b.lo);
+    return rt_add(rt_add(rt_mul(e.x, e.y), rt_mul(e.y, e.z)), rt_mul(e.z, e.x));
+}
+
+/* Stores b rounded outwards on the tree's grid. */
+void rt_bvh_store_box(rt_bound box[6], rt_aabb b, int grid);
+
+/* Collapses the binary tree at bin (root node 0, `inner` inner nodes) into the 4-wide
+ * tree on bvh->grid: bvh->nodes (in the arena, 64-byte aligned), node_count, depth. */
+rt_status rt_bvh_collapse(const rt_bin_node *bin, uint32_t inner, rt_bvh *bvh, rt_arena *arena);
+/* The tree of a scene without primitives: a root whose slots are all empty. */
+rt_status rt_bvh_empty(rt_bvh *bvh, rt_arena *arena);
+
+#endif
