@@ -22,15 +22,10 @@ double bench_parallel_for(uint32_t count, uint32_t threads, bench_range_fn fn, v
 /* Online CPUs, at least 1. */
 uint32_t bench_cpu_count(void);
 
-/* The best (smallest) wall time of `repeats` runs of bench_parallel_for; *best_cpu gets
- * the smallest process CPU time of a run. */
-double bench_best_of(uint32_t repeats, uint32_t count, uint32_t threads, bench_range_fn fn, void *ctx,
-                     double *best_cpu);
-
-/* Times fn over `count` rays with 1 thread and with all threads (progress on stderr,
- * labelled `kernel`) and prints "<name>_mrays_1", "<name>_mrays_1_cpu" (by CPU time),
- * "<name>_mrays_all", "<name>_rays" and "<name>_hits" (the sum of hit[], which fn
- * fills) on stdout. */
+/* Times fn over `count` rays with 1 thread and with all threads, the two alternating,
+ * best of `repeats` each (progress on stderr, labelled `kernel`), and prints
+ * "<name>_mrays_1", "<name>_mrays_1_cpu" (by CPU time), "<name>_mrays_all",
+ * "<name>_rays" and "<name>_hits" (the sum of hit[], which fn fills) on stdout. */
 void bench_time_rays(const char *kernel, const char *name, uint32_t count, uint32_t repeats, bench_range_fn fn,
                      void *ctx, const uint8_t *hit);
 
