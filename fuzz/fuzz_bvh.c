@@ -1,7 +1,9 @@
 /* libFuzzer target: BVH build and traversal (core/bvh.c) against testing every
  * primitive. For a soup of triangles, spheres and cylinders from the bytes,
  * rt_scene_nearest with and without the BVH must agree on hit or miss, on the
- * primitive (ties go to the lower reference) and on t, bit for bit. */
+ * primitive (ties go to the lower reference) and on t, bit for bit; and a build
+ * under a plan that splits the top of the tree level by level and bins in small
+ * chunks must give the same tree, byte for byte. */
 #include <math.h>
 #include <string.h>
 
@@ -75,6 +77,21 @@ static void check_tree(const rt_scene *s)
     }
     for (uint32_t i = 1; i < bvh->node_count; i++) FZ_CHECK(parents[i] == 1, "node %u has no parent", i);
     for (uint32_t p = 0; p < s->prim_count; p++) FZ_CHECK(seen[p], "primitive %u is in no leaf", p);
+}
+
+/* Rebuilds s's tree under plan and checks it is s's tree. */
+static void check_plan(const rt_scene *s, rt_bvh_plan plan)
+{
+    static uint8_t memory[1u << 20];
+    rt_arena arena;
+    rt_arena_init(&arena, memory, sizeof memory);
+    rt_scene copy = *s;
+    FZ_CHECK(rt_bvh_build_planned(&copy, &arena, NULL, plan) == RT_OK, "plan %u/%u: out of memory", plan.split_above,
+             plan.chunk);
+    FZ_CHECK(copy.bvh.node_count == s->bvh.node_count && copy.bvh.depth == s->bvh.depth &&
+                 !memcmp(copy.bvh.nodes, s->bvh.nodes, s->bvh.node_count * sizeof(rt_bvh_node)) &&
+                 !memcmp(copy.bvh.prim_refs, s->bvh.prim_refs, s->prim_count * sizeof(uint32_t)),
+             "plan %u/%u builds another tree", plan.split_above, plan.chunk);
 }
 
 static void check_ray(const rt_scene *s, rt_ray ray)
@@ -153,6 +170,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (fz_build(&desc, &s, &err) != RT_OK) return 0; /* raw coordinates can overflow a transform */
     if (s.prim_count == 0) return 0;
     check_tree(&s);
+    /* The plan comes from the layout byte's unused bits, so the seeds keep their rays. */
+    check_plan(&s, (rt_bvh_plan){1 + (layout >> 1) % 8, 1 + (layout >> 4)});
     while (in.pos < in.size) {
         uint8_t kind = fz_u8(&in) % 4;
         rt_vec3 target = kind == 0 || n_tri == 0 ? point(&in, mode, range) : s.positions[fz_below(&in, s.vertex_count)];
