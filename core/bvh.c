@@ -226,6 +226,7 @@ typedef struct {
     rt_bvh_plan plan;
     build_ref *refs;
     rt_bin_node *nodes;
+    rt_real extent;
     int grid;
     /* The references' bounds and centroid bounds, per chunk of plan.chunk. */
     rt_aabb *chunk_bounds, *chunk_centroids;
@@ -416,7 +417,8 @@ static uint32_t build_binary(build *b, uint32_t n)
         root.bounds = aabb_union(root.bounds, b->chunk_bounds[c]);
         root.centroids = aabb_union(root.centroids, b->chunk_centroids[c]);
     }
-    b->grid = rt_bound_grid(aabb_magnitude(root.bounds));
+    b->extent = aabb_magnitude(root.bounds);
+    b->grid = rt_bound_grid(b->extent);
     uint32_t inner = 0, subtrees = 0, level = 0;
     if (is_top(b, &root)) b->level[level++] = root;
     else b->subtrees[subtrees++] = root;
@@ -450,6 +452,7 @@ rt_status rt_bvh_build_planned(rt_scene *scene, rt_arena *arena, const rt_worker
         return RT_ERR_NOMEM;
     uint32_t inner = build_binary(&b, n);
     bvh->grid = b.grid;
+    bvh->extent = b.extent;
     for (uint32_t i = 0; i < n; i++) bvh->prim_refs[i] = b.refs[i].prim;
     rt_status st = rt_bvh_collapse(b.nodes, inner, bvh, arena);
     if (st != RT_OK) return st;

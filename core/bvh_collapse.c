@@ -116,6 +116,7 @@ rt_status rt_bvh_collapse(const rt_bin_node *bin, uint32_t inner, rt_bvh *bvh, r
 rt_status rt_bvh_empty(rt_bvh *bvh, rt_arena *arena)
 {
     bvh->grid = rt_bound_grid(RT_ONE);
+    bvh->extent = RT_ZERO;
     bvh->nodes = rt_arena_alloc_aligned(arena, sizeof(rt_bvh_node), 64);
     if (!bvh->nodes) return RT_ERR_NOMEM;
     for (int c = 0; c < RT_BVH_WIDTH; c++) clear_slot(bvh->nodes, c, bvh->grid);

@@ -159,7 +159,8 @@ typedef struct {
     uint32_t node_count;
     uint32_t *prim_refs;
     uint32_t depth;
-    int grid; /* of the nodes' boxes (rt_bound_grid) */
+    int grid;       /* of the nodes' boxes (rt_bound_grid) */
+    rt_real extent; /* the largest |coordinate| of the primitives' padded bounds (0 for none) */
 } rt_bvh;
 
 typedef struct {
