@@ -83,10 +83,13 @@ typedef struct {
     bool active[3];
 } binning;
 
-/* The references binned so far, per axis and bin: the union of their bounds, their count. */
+/* The references binned so far, per axis and bin: the union of their bounds, their
+ * count, and in used[axis] bit k for each bin k that holds any. A union with an empty
+ * box changes no bit, so the sweeps leave empty bins out. */
 typedef struct {
     rt_aabb box[3][BIN_COUNT];
     uint32_t count[3][BIN_COUNT];
+    uint32_t used[3];
 } bins;
 
 static binning binning_of(const build_task *t)
@@ -107,10 +110,11 @@ static int bin_of(rt_real c, rt_real lo, rt_real scale)
     return b < 0 ? 0 : b >= BIN_COUNT ? BIN_COUNT - 1 : (int)b;
 }
 
-/* Bins refs[first .. first + count) into b, which starts empty. */
+/* Bins refs[first .. first + count) into b. */
 static void bin_refs(bins *b, const binning *g, const build_ref *refs, uint32_t first, uint32_t count)
 {
     for (int axis = 0; axis < 3; axis++) {
+        b->used[axis] = 0;
         for (int k = 0; k < BIN_COUNT; k++) {
             b->box[axis][k] = rt_aabb_empty();
             b->count[axis][k] = 0;
@@ -126,6 +130,9 @@ static void bin_refs(bins *b, const binning *g, const build_ref *refs, uint32_t 
         b->count[0][bx]++;
         b->count[1][by]++;
         b->count[2][bz]++;
+        b->used[0] |= 1u << bx;
+        b->used[1] |= 1u << by;
+        b->used[2] |= 1u << bz;
     }
 }
 
@@ -135,6 +142,7 @@ static void bin_refs(bins *b, const binning *g, const build_ref *refs, uint32_t 
 static void merge_bins(bins *into, const bins *later)
 {
     for (int axis = 0; axis < 3; axis++) {
+        into->used[axis] |= later->used[axis];
         for (int k = 0; k < BIN_COUNT; k++) {
             into->box[axis][k] = aabb_union(into->box[axis][k], later->box[axis][k]);
             into->count[axis][k] += later->count[axis][k];
@@ -158,12 +166,17 @@ static bool price_split(const build_task *t, const binning *g, const bins *b, sp
     bool found = false;
     for (int axis = 0; axis < 3; axis++) {
         if (!g->active[axis]) continue;
-        /* Sweep from the right to get suffix areas, then from the left to price each plane. */
+        uint32_t used = b->used[axis];
+        /* Sweep from the right to get suffix areas, then from the left to price each plane.
+         * A plane after an empty bin costs what the plane before it costs and never wins
+         * (a cheaper cost must be strictly cheaper), so only planes after used bins,
+         * with a used bin beyond them, are priced. */
         rt_real right_area[BIN_COUNT];
         uint32_t right_n[BIN_COUNT];
         rt_aabb acc = rt_aabb_empty();
         uint32_t n = 0;
         for (int k = BIN_COUNT - 1; k > 0; k--) {
+            if (!(used >> k & 1u)) continue;
             acc = aabb_union(acc, b->box[axis][k]);
             n += b->count[axis][k];
             right_area[k] = rt_aabb_half_area(acc);
@@ -171,18 +184,22 @@ static bool price_split(const build_task *t, const binning *g, const bins *b, sp
         }
         acc = rt_aabb_empty();
         n = 0;
-        for (int k = 0; k < BIN_COUNT - 1; k++) {
+        for (int k = 0, plane = -1; k < BIN_COUNT; k++) {
+            if (!(used >> k & 1u)) continue;
+            /* The plane after the previous used bin: refs up to it left, from bin k right. */
+            if (plane >= 0) {
+                rt_real cost = rt_add(visit, rt_add(rt_mul(rt_from_int(n), rt_aabb_half_area(acc)),
+                                                    rt_mul(rt_from_int(right_n[k]), right_area[k])));
+                if (cost < best_cost) {
+                    best_cost = cost;
+                    found = true;
+                    out->axis = axis;
+                    out->bin = plane;
+                }
+            }
             acc = aabb_union(acc, b->box[axis][k]);
             n += b->count[axis][k];
-            if (n == 0 || right_n[k + 1] == 0) continue;
-            rt_real cost = rt_add(visit, rt_add(rt_mul(rt_from_int(n), rt_aabb_half_area(acc)),
-                                                rt_mul(rt_from_int(right_n[k + 1]), right_area[k + 1])));
-            if (cost < best_cost) {
-                best_cost = cost;
-                found = true;
-                out->axis = axis;
-                out->bin = k;
-            }
+            plane = k;
         }
     }
     if (!found) return false;
@@ -190,6 +207,7 @@ static bool price_split(const build_task *t, const binning *g, const bins *b, sp
     out->scale = g->scale[out->axis];
     out->left = out->right = rt_aabb_empty();
     for (int k = 0; k < BIN_COUNT; k++) {
+        if (!(b->used[out->axis] >> k & 1u)) continue;
         rt_aabb *side = k <= out->bin ? &out->left : &out->right;
         *side = aabb_union(*side, b->box[out->axis][k]);
     }
