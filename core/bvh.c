@@ -405,24 +405,29 @@ rt_bvh_plan rt_bvh_default_plan(void)
     return p;
 }
 
-/* Allocates the top phase's arrays for n references (their sizes are bounds: a level's
- * top tasks are disjoint and larger than split_above, and there are at most
- * RT_BVH_MAX_DEPTH levels). */
-static bool alloc_top(build *b, rt_arena *arena, uint32_t n)
+/* Allocates the arrays of the top phase (when the root is larger than split_above) and
+ * of the subtrees, for n references. Their sizes are bounds: a level's top tasks are
+ * disjoint and larger than split_above, there are at most RT_BVH_MAX_DEPTH levels, and
+ * the subtrees, being disjoint, are at most n. */
+static bool alloc_phases(build *b, rt_arena *arena, uint32_t n)
 {
-    size_t level = n / ((size_t)b->plan.split_above + 1) + 1;
-    b->level = rt_arena_alloc(arena, level * sizeof *b->level);
-    b->level_binning = rt_arena_alloc(arena, level * sizeof *b->level_binning);
-    b->level_split = rt_arena_alloc(arena, level * sizeof *b->level_split);
-    b->level_splits = rt_arena_alloc(arena, level * sizeof *b->level_splits);
-    b->children = rt_arena_alloc(arena, 2 * level * sizeof *b->children);
-    b->chunks = rt_arena_alloc(arena, (n / b->plan.chunk + level) * sizeof *b->chunks);
-    size_t subtrees = 2 * RT_BVH_MAX_DEPTH * level + 1;
-    if (subtrees > n) subtrees = n;
+    size_t subtrees = 1;
+    if (n > b->plan.split_above) {
+        size_t level = n / ((size_t)b->plan.split_above + 1) + 1;
+        b->level = rt_arena_alloc(arena, level * sizeof *b->level);
+        b->level_binning = rt_arena_alloc(arena, level * sizeof *b->level_binning);
+        b->level_split = rt_arena_alloc(arena, level * sizeof *b->level_split);
+        b->level_splits = rt_arena_alloc(arena, level * sizeof *b->level_splits);
+        b->children = rt_arena_alloc(arena, 2 * level * sizeof *b->children);
+        b->chunks = rt_arena_alloc(arena, (n / b->plan.chunk + level) * sizeof *b->chunks);
+        if (!b->level || !b->level_binning || !b->level_split || !b->level_splits || !b->children || !b->chunks)
+            return false;
+        subtrees = 2 * RT_BVH_MAX_DEPTH * level + 1;
+        if (subtrees > n) subtrees = n;
+    }
     b->subtrees = rt_arena_alloc(arena, subtrees * sizeof *b->subtrees);
     b->subtree_inner = rt_arena_alloc(arena, subtrees * sizeof *b->subtree_inner);
-    return b->level && b->level_binning && b->level_split && b->level_splits && b->children && b->chunks &&
-           b->subtrees && b->subtree_inner;
+    return b->subtrees && b->subtree_inner;
 }
 
 /* Builds the binary tree over n > 0 references into b->nodes; returns its inner node count. */
@@ -466,7 +471,7 @@ rt_status rt_bvh_build_planned(rt_scene *scene, rt_arena *arena, const rt_worker
     b.chunk_bounds = rt_arena_alloc(arena, chunks * sizeof *b.chunk_bounds);
     b.chunk_centroids = rt_arena_alloc(arena, chunks * sizeof *b.chunk_centroids);
     b.stacks = rt_arena_alloc(arena, (size_t)rt_worker_count(workers) * SUBTREE_STACK * sizeof *b.stacks);
-    if (!b.nodes || !b.refs || !b.chunk_bounds || !b.chunk_centroids || !b.stacks || !alloc_top(&b, arena, n))
+    if (!b.nodes || !b.refs || !b.chunk_bounds || !b.chunk_centroids || !b.stacks || !alloc_phases(&b, arena, n))
         return RT_ERR_NOMEM;
     uint32_t inner = build_binary(&b, n);
     bvh->grid = b.grid;
