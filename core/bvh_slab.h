@@ -82,27 +82,17 @@ __attribute__((always_inline)) static inline int64_t scale_bound(int64_t x, int 
 }
 
 /* The number of bits of v (0 for 0). */
-static int bit_length(uint64_t v)
-{
-    int n = 0;
-    for (int step = 32; step > 0; step /= 2)
-        if (v >> step) {
-            v >>= step;
-            n += step;
-        }
-    return n + (v != 0);
-}
+static int bit_length(uint64_t v) { return v ? 64 - __builtin_clzll(v) : 0; }
 
 static fixed_slab fixed_slab_prepare(rt_vec3 origin, rt_vec3 inv, rt_real t_min, int grid)
 {
     fixed_slab f;
     rt_real o[3] = {origin.x, origin.y, origin.z}, iv[3] = {inv.x, inv.y, inv.z};
     int64_t o_lo[3];
-    int steepest = 0;
+    /* The bits of the largest |inv|, those of the three magnitudes or'ed. */
+    int steepest = bit_length(rt_fx_mag(iv[0]) | rt_fx_mag(iv[1]) | rt_fx_mag(iv[2]));
     f.usable = t_min >= RT_ZERO;
     for (int k = 0; k < 3; k++) {
-        int bits = bit_length(rt_fx_mag(iv[k]));
-        if (bits > steepest) steepest = bits;
         o_lo[k] = floor_shift(o[k], grid);
         if (rt_fx_mag(o_lo[k]) >= UINT64_C(1) << 32) f.usable = false;
     }
