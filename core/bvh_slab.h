@@ -82,19 +82,25 @@ static bool float_slab_prepare(rt_vec3 origin, rt_vec3 inv, rt_real t_min, rt_re
  * conservative (a box is never missed where the exact test hits it; the boxes are
  * padded beyond any rounding of a hit's t), so instead of rounded, saturated Q32.32
  * products it bounds each plane's distance from below (near planes) or above (far
- * planes) in a per-ray unit of distance: with the plane b and o_lo = floor(origin) in
- * the tree's grid units, d = b - o_lo, and m = floor(inv * 2^e) (|m| <= 2^29 on the
- * steepest axis), the distance in units is d' m' with d' in (d - 1, d] and m' in
- * [m, m + 1), so within |m| + 1 + |d| of d m. With |o_lo| < 2^32 every product stays
- * below 2^62; rays beyond that take the general test. */
+ * planes) in a per-ray unit of distance. With the plane b and o_lo = floor(origin) in
+ * the tree's grid units and m = floor(inv * 2^e) (|m| <= 2^29 on the steepest axis),
+ * the distance in units is d' M with d' in (b - o_lo - 1, b - o_lo] and M in [m, m + 1).
+ * Going up an axis (m >= 0), a near plane is at least (b - o_lo - 1) m away and a far
+ * plane at most (b - o_lo) (m + 1); going down, at least (b - o_lo) (m + 1) and at most
+ * (b - o_lo - 1) m. Each bound holds unless the plane lies behind the origin, and with
+ * t_min >= 0 that cannot matter: such a near plane's bound is at most 0, and such a far
+ * plane is missed by the exact test too. So a plane costs one subtraction and one
+ * multiply, (b - o) m with o and m chosen per ray. With |o_lo| < 2^32 every product
+ * stays below 2^62; rays beyond that, or with t_min < 0, take the general test. */
 typedef struct {
-    int64_t o_lo[3], m[3], m_err[3]; /* m_err = |m| + 1 */
-    int to_units;                    /* a Q32.32 value times 2^to_units is in units */
+    int64_t near_o[3], near_m[3], far_o[3], far_m[3]; /* a plane's bound is (b - o) m */
+    int64_t t_min_u;                                  /* t_min in units, rounded down */
+    int to_units;                                     /* a Q32.32 value times 2^to_units is in units */
     bool usable;
 } fixed_slab;
 
 /* floor(x / 2^s) for 0 <= s <= 63, by the magnitude (no signed right shift). */
-static int64_t floor_shift(int64_t x, int s)
+__attribute__((always_inline)) static inline int64_t floor_shift(int64_t x, int s)
 {
     uint64_t mag = rt_fx_mag(x), q = mag >> s;
     bool rest = (mag & ((UINT64_C(1) << s) - 1)) != 0;
@@ -102,42 +108,33 @@ static int64_t floor_shift(int64_t x, int s)
 }
 
 /* x * 2^s for s >= 0, saturated to +-INT64_MAX. */
-static int64_t saturating_scale(int64_t x, int s)
+__attribute__((always_inline)) static inline int64_t saturating_scale(int64_t x, int s)
 {
     int64_t most = INT64_MAX >> s;
     return x > most ? INT64_MAX : x < -most ? -INT64_MAX : x * ((int64_t)1 << s);
 }
 
 /* x * 2^s rounded down (up = false) or up, saturated; -63 <= s <= 62. */
-static int64_t scale_bound(int64_t x, int s, bool up)
+__attribute__((always_inline)) static inline int64_t scale_bound(int64_t x, int s, bool up)
 {
     if (s >= 0) return saturating_scale(x, s);
     return up ? -floor_shift(-x, -s) : floor_shift(x, -s);
 }
 
 /* The number of bits of v (0 for 0). */
-static int bit_length(uint64_t v)
-{
-    int n = 0;
-    for (int step = 32; step > 0; step /= 2)
-        if (v >> step) {
-            v >>= step;
-            n += step;
-        }
-    return n + (v != 0);
-}
+static int bit_length(uint64_t v) { return v ? 64 - __builtin_clzll(v) : 0; }
 
-static fixed_slab fixed_slab_prepare(rt_vec3 origin, rt_vec3 inv, int grid)
+static fixed_slab fixed_slab_prepare(rt_vec3 origin, rt_vec3 inv, rt_real t_min, int grid)
 {
     fixed_slab f;
     rt_real o[3] = {origin.x, origin.y, origin.z}, iv[3] = {inv.x, inv.y, inv.z};
-    int steepest = 0;
-    f.usable = true;
+    int64_t o_lo[3];
+    /* The bits of the largest |inv|, those of the three magnitudes or'ed. */
+    int steepest = bit_length(rt_fx_mag(iv[0]) | rt_fx_mag(iv[1]) | rt_fx_mag(iv[2]));
+    f.usable = t_min >= RT_ZERO;
     for (int k = 0; k < 3; k++) {
-        int bits = bit_length(rt_fx_mag(iv[k]));
-        if (bits > steepest) steepest = bits;
-        f.o_lo[k] = floor_shift(o[k], grid);
-        if (rt_fx_mag(f.o_lo[k]) >= UINT64_C(1) << 32) f.usable = false;
+        o_lo[k] = floor_shift(o[k], grid);
+        if (rt_fx_mag(o_lo[k]) >= UINT64_C(1) << 32) f.usable = false;
     }
     /* e = 29 - steepest leaves m 29 bits on the steepest axis. A distance is d' g inv
      * with the grid unit g = 2^(grid - 32) and inv = inv_q 2^-32 (inv_q the Q32.32 count),
@@ -145,19 +142,16 @@ static fixed_slab fixed_slab_prepare(rt_vec3 origin, rt_vec3 inv, int grid)
      * units. */
     int e = 29 - steepest;
     f.to_units = e + 32 - grid;
+    f.t_min_u = scale_bound(t_min, f.to_units, false);
     for (int k = 0; k < 3; k++) {
-        f.m[k] = e >= 0 ? iv[k] * ((int64_t)1 << e) : floor_shift(iv[k], -e);
-        f.m_err[k] = (int64_t)rt_fx_mag(f.m[k]) + 1;
+        int64_t m = e >= 0 ? iv[k] * ((int64_t)1 << e) : floor_shift(iv[k], -e);
+        bool up = m >= 0;
+        f.near_o[k] = o_lo[k] + up;
+        f.near_m[k] = m + !up;
+        f.far_o[k] = o_lo[k] + !up;
+        f.far_m[k] = m + up;
     }
     return f;
-}
-
-/* Lower (near = true) or upper bound of one plane's distance, in units. */
-static inline int64_t fixed_plane(const fixed_slab *f, int k, rt_bound b, bool near)
-{
-    int64_t d = (int64_t)b - f->o_lo[k];
-    int64_t err = f->m_err[k] + (int64_t)rt_fx_mag(d);
-    return near ? d * f->m[k] - err : d * f->m[k] + err;
 }
 #endif
 
@@ -213,7 +207,7 @@ static slab_ray slab_prepare(const rt_ray_setup *rs, const rt_bvh *bvh)
     r.single = !r.general && float_slab_prepare(o, inv, r.t_min, rs->ray.t_max, bvh->extent, &r.fs);
 #endif
 #ifdef RT_REAL_FIXED
-    r.fx = fixed_slab_prepare(o, inv, bvh->grid);
+    r.fx = fixed_slab_prepare(o, inv, r.t_min, bvh->grid);
     r.general = r.general || !r.fx.usable;
 #endif
     return r;
@@ -309,21 +303,30 @@ __attribute__((always_inline)) static inline unsigned slab_hit_float(const slab_
 #endif
 
 #ifdef RT_REAL_FIXED
-/* All four children with fixed_plane's bounds: a superset of the exact test's hits, and
+/* Child c's plane in `row` (a row of the node's boxes): its bound in units (see fixed_slab). */
+__attribute__((always_inline)) static inline int64_t fixed_plane(const rt_bound *row, int c, int64_t o, int64_t m)
+{
+    return ((int64_t)row[c] - o) * m;
+}
+
+/* All four children with fixed_slab's bounds: a superset of the exact test's hits, and
  * entry distances at or below the exact ones. */
 __attribute__((always_inline)) static inline unsigned slab_hit_fixed(const slab_ray *r, const rt_bvh_node *node,
                                                                      rt_real t_max, rt_real t_enter[RT_BVH_WIDTH])
 {
     const fixed_slab *f = &r->fx;
-    int64_t t_min_u = scale_bound(r->t_min, f->to_units, false), limit_u = scale_bound(t_max, f->to_units, true);
+    int64_t limit_u = scale_bound(t_max, f->to_units, true);
+    const rt_bound *nx = node->box[r->near[0]], *ny = node->box[r->near[1]], *nz = node->box[r->near[2]];
+    const rt_bound *fx = node->box[r->far[0]], *fy = node->box[r->far[1]], *fz = node->box[r->far[2]];
     unsigned hits = 0;
     for (int c = 0; c < RT_BVH_WIDTH; c++) {
         if (node->count[c] == RT_BVH_NO_CHILD) continue;
-        int64_t t0 = t_min_u, t1 = limit_u;
-        for (int k = 0; k < 3; k++) {
-            t0 = rt_max(t0, fixed_plane(f, k, node->box[r->near[k]][c], true));
-            t1 = rt_min(t1, fixed_plane(f, k, node->box[r->far[k]][c], false));
-        }
+        int64_t t0 = rt_max(f->t_min_u, fixed_plane(nx, c, f->near_o[0], f->near_m[0]));
+        t0 = rt_max(t0, fixed_plane(ny, c, f->near_o[1], f->near_m[1]));
+        t0 = rt_max(t0, fixed_plane(nz, c, f->near_o[2], f->near_m[2]));
+        int64_t t1 = rt_min(limit_u, fixed_plane(fx, c, f->far_o[0], f->far_m[0]));
+        t1 = rt_min(t1, fixed_plane(fy, c, f->far_o[1], f->far_m[1]));
+        t1 = rt_min(t1, fixed_plane(fz, c, f->far_o[2], f->far_m[2]));
         if (t0 > t1) continue;
         hits |= 1u << c;
         t_enter[c] = scale_bound(t0, -f->to_units, false);

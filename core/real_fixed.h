@@ -59,6 +59,13 @@ static inline rt_real rt_fx_signed(uint64_t mag, bool negative)
     return negative ? -m : m;
 }
 
+/* The value's 64 bits (two's complement), for blobs (core/blob.c); exact both ways. */
+static inline uint64_t rt_real_to_bits(rt_real a) { return (uint64_t)a; }
+static inline rt_real rt_real_from_bits(uint64_t bits)
+{
+    return bits <= INT64_MAX ? (rt_real)bits : -(rt_real)~bits - 1;
+}
+
 static inline rt_real rt_add(rt_real a, rt_real b)
 {
     rt_real r;
@@ -74,13 +81,30 @@ static inline rt_real rt_sub(rt_real a, rt_real b)
 }
 
 #if defined(__SIZEOF_INT128__) && !defined(RT_FIXED_PORTABLE)
-/* One signed 128-bit product; truncating (p +- 2^31) / 2^32 rounds halves away from zero,
- * the same result as the magnitude form below. */
-static inline rt_real rt_mul(rt_real a, rt_real b)
+/* The signed 128-bit product p rounded as in rt_mul and saturated: truncating (p +- 2^31) /
+ * 2^32 rounds halves away from zero. */
+static inline rt_real rt_fx_mul_rails(__int128 p)
 {
-    __int128 p = (__int128)a * b, half = (__int128)1 << 31;
+    __int128 half = (__int128)1 << 31;
     __int128 q = (p < 0 ? p - half : p + half) / ((__int128)1 << 32);
     return q > INT64_MAX ? RT_REAL_MAX : q < -INT64_MAX ? -RT_REAL_MAX : (rt_real)q;
+}
+
+/* One signed 128-bit product p, the same result as the magnitude form below. Unless its high
+ * word is near the rails, the rounding is floor((p + 2^31 - [p < 0]) / 2^32): the high 64 bits
+ * of p / 2^32 plus the carry out of its low 32 bits, with no branch on the sign. */
+static inline rt_real rt_mul(rt_real a, rt_real b)
+{
+    /* Opaque operands: otherwise gcc may widen an operand shared by several products once,
+     * and build each product from three multiplies instead of one imul. */
+    __asm__("" : "+r"(a), "+r"(b));
+    __int128 p = (__int128)a * b;
+    unsigned __int128 u = (unsigned __int128)p;
+    uint64_t hi = (uint64_t)(u >> 64), lo = (uint64_t)u;
+    /* The signed high word outside (-2^31, 2^31 - 1): the result may reach the rails. */
+    if (hi + ((UINT64_C(1) << 31) - 1) > (UINT64_C(1) << 32) - 3) return rt_fx_mul_rails(p);
+    uint64_t carry = ((lo & UINT32_MAX) + (UINT64_C(1) << 31) - (hi >> 63)) >> 32;
+    return rt_real_from_bits((hi << 32 | lo >> 32) + carry);
 }
 #else
 static inline rt_real rt_mul(rt_real a, rt_real b)
@@ -166,13 +190,6 @@ static inline uint8_t rt_unit_to_byte(rt_real c)
     if (c >= RT_ONE) return 255;
     uint64_t scaled = (uint64_t)c * 255u + (UINT64_C(1) << 12);
     return scaled >> 32 >= 255u ? 255 : (uint8_t)(scaled >> 32);
-}
-
-/* The value's 64 bits (two's complement), for blobs (core/blob.c); exact both ways. */
-static inline uint64_t rt_real_to_bits(rt_real a) { return (uint64_t)a; }
-static inline rt_real rt_real_from_bits(uint64_t bits)
-{
-    return bits <= INT64_MAX ? (rt_real)bits : -(rt_real)~bits - 1;
 }
 
 /* Host-side conversion for loaders and tests; never called by the core (they are the

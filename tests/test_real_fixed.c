@@ -155,6 +155,33 @@ Test(real_fixed, mul_rounds_to_nearest_and_saturates)
     cr_assert_eq(rt_mul(RT_REAL_MAX, RT_REAL_MAX), RT_REAL_MAX);
 }
 
+/* Where rt_mul's 64-bit rounding hands over to the 128-bit one (a high word of -2^31 or
+ * 2^31 - 1 and beyond: products near +-2^95 and +-(2^95 - 2^64)), and exact ties, against
+ * the exact reference. */
+Test(real_fixed, mul_matches_exact_product_near_rails_and_ties)
+{
+#ifdef __SIZEOF_INT128__
+    lcg g = {13};
+    for (int i = 0; i < 1000000; i++) {
+        rt_real a = (rt_real)(lcg_next(&g) >> (1 + lcg_next(&g) % 30)) | (INT64_C(1) << 33), b;
+        if (i % 2 == 0) { /* a b within 4 a of 2^95 or of 2^95 - 2^64 */
+            unsigned __int128 edge = ((unsigned __int128)1 << 95) - ((unsigned __int128)(lcg_next(&g) & 1) << 64);
+            b = (rt_real)(edge / (uint64_t)a) + (rt_real)(lcg_next(&g) % 9) - 4;
+        } else {
+            a |= 1; /* an odd a times 2^31 (2k + 1) has a fraction of exactly half an lsb */
+            b = (rt_real)(lcg_next(&g) % 64 * 2 + 1) << 31;
+        }
+        if (lcg_next(&g) & 1) a = -a;
+        if (lcg_next(&g) & 1) b = -b;
+        rt_real want = saturate(round_div((__int128)a * b, (__int128)1 << 32));
+        cr_assert_eq(rt_mul(a, b), want, "%lld * %lld", (long long)a, (long long)b);
+    }
+#endif
+    cr_assert_eq(rt_mul(RT_ONE, RT_REAL_MAX - 5), RT_REAL_MAX - 5); /* a high word of 2^31 - 1 */
+    cr_assert_eq(rt_mul(-RT_ONE, RT_REAL_MAX), -RT_REAL_MAX);        /* -2^31 */
+    cr_assert_eq(rt_mul(RT_C(0.5), RT_REAL_MAX), INT64_C(1) << 62);  /* 2^62 - 1/2 rounds up */
+}
+
 Test(real_fixed, div_rounds_to_nearest_and_saturates)
 {
 #ifdef __SIZEOF_INT128__
