@@ -23,8 +23,11 @@ __attribute__((always_inline)) static inline bool rt_intersect_triangle_axes(con
     rt_real u = rt_sub(rt_mul(cx, by), rt_mul(cy, bx));
     rt_real v = rt_sub(rt_mul(ax, cy), rt_mul(ay, cx));
     rt_real w = rt_sub(rt_mul(bx, ay), rt_mul(by, ax));
-    if ((u < RT_ZERO || v < RT_ZERO || w < RT_ZERO) && (u > RT_ZERO || v > RT_ZERO || w > RT_ZERO))
-        return false;
+    /* Signs on both sides: outside. One branch on the combined test, not one per sign,
+     * which a triangle's edges make unpredictable. */
+    bool negative = (u < RT_ZERO) | (v < RT_ZERO) | (w < RT_ZERO);
+    bool positive = (u > RT_ZERO) | (v > RT_ZERO) | (w > RT_ZERO);
+    if (negative & positive) return false;
     rt_real det = rt_add(rt_add(u, v), w);
     /* A ray (nearly) in the triangle's plane sees it edge-on: u, v, w and det are then
      * rounding noise of the size of the 2D coordinates squared times 1e-16, and t would be
