@@ -15,7 +15,6 @@ typedef struct rt_workers {
     /* Calls job(arg, i, worker) once for every i < jobs, on any of the workers in any
      * order, and returns when every call has returned. */
     void (*run)(const struct rt_workers *w, rt_job_fn *job, void *arg, uint32_t jobs);
-    void *ctx; /* the caller's, for run */
 } rt_workers;
 
 static inline uint32_t rt_worker_count(const rt_workers *w) { return w && w->count > 1 ? w->count : 1; }

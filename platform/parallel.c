@@ -102,7 +102,7 @@ static void run_on_threads(const rt_workers *w, rt_job_fn *fn, void *arg, uint32
 
 rt_workers rt_thread_workers(uint32_t threads)
 {
-    rt_workers w = {rt_thread_count(threads), run_on_threads, NULL};
+    rt_workers w = {rt_thread_count(threads), run_on_threads};
     return w;
 }
 

@@ -206,7 +206,7 @@ Test(bvh, tree_does_not_depend_on_plan_or_workers)
     cr_assert_gt(s.bvh.node_count, 200);
     static const rt_bvh_plan plans[] = {{1, 1}, {4, 3}, {9, 1000}, {64, 64}, {300, 17}, {1000, 5000}, {3049, 1}};
     rt_workers threads[] = {rt_thread_workers(1), rt_thread_workers(2), rt_thread_workers(3), rt_thread_workers(7)};
-    rt_workers backwards = {5, run_backwards, NULL};
+    rt_workers backwards = {5, run_backwards};
     for (size_t p = 0; p < sizeof plans / sizeof plans[0]; p++) {
         assert_same_tree(&s, plans[p], NULL, "on this thread");
         assert_same_tree(&s, plans[p], &backwards, "backwards");
