@@ -237,6 +237,12 @@ static uint32_t partition(build_ref *refs, uint32_t first, uint32_t count, const
     return i - first;
 }
 
+/* Some of a top task's references, binned by one job. */
+typedef struct {
+    uint32_t task, first, count;
+    bins bins;
+} bin_chunk;
+
 /* One build: the tree's scratch and its work of the moment, shared with the jobs. */
 typedef struct {
     const rt_scene *scene;
@@ -252,7 +258,7 @@ typedef struct {
      * splits found (or not), and the children made, two per task. */
     build_task *level;
     binning *level_binning;
-    struct bin_chunk *chunks;
+    bin_chunk *chunks;
     split *level_split;
     bool *level_splits;
     build_task *children;
@@ -261,12 +267,6 @@ typedef struct {
     uint32_t *subtree_inner;
     build_task *stacks;
 } build;
-
-/* Some of a top task's references, binned by one job. */
-typedef struct bin_chunk {
-    uint32_t task, first, count;
-    bins bins;
-} bin_chunk;
 
 /* A subtree's stack: each split pushes two tasks and pops one, once per level. */
 #define SUBTREE_STACK (RT_BVH_MAX_DEPTH + 2)
