@@ -6,8 +6,10 @@
 #   2. the host rtk with other thread counts and tile sizes must match it;
 #   3. the core alone (targets/hash_driver.c reading `rtk pack` blobs), built with gcc
 #      and clang at -O0/-O2/-O3, for i686 (-m32 -msse2 -mfpmath=sse) and for aarch64
-#      (cross-compiled, run under qemu-user), must match it too.
-# Prints one line per variant and "determinism: N passed, M failed".
+#      (cross-compiled, run under qemu-user), must match it too. The i686 driver runs
+#      natively where the kernel executes 32-bit binaries, else under qemu-i386 (some
+#      kernels are built without 32-bit support: "Exec format error").
+# Prints one line per variant, saying how its driver ran, and "determinism: N passed, M failed".
 set -euo pipefail
 cd "$(dirname "$0")/.."
 reals=${*:-double fixed}
@@ -24,8 +26,14 @@ need() { # installs Debian packages whose command or file is missing
   local sudo=; [ "$(id -u)" = 0 ] || sudo=sudo
   $sudo apt-get install -y -qq "${missing[@]}" >/dev/null
 }
-need clang clang aarch64-linux-gnu-gcc gcc-aarch64-linux-gnu qemu-aarch64 qemu-user \
+need clang clang aarch64-linux-gnu-gcc gcc-aarch64-linux-gnu qemu-aarch64 qemu-user qemu-i386 qemu-user \
      /usr/lib32/libc.a libc6-dev-i386 /usr/lib/gcc/x86_64-linux-gnu/12/32/libgcc.a lib32gcc-12-dev
+
+# Probed once: can this kernel execute a static i686 binary itself?
+printf 'int main(void) { return 0; }\n' >"$work/probe.c"
+gcc -m32 -static "$work/probe.c" -o "$work/probe-i686"
+if "$work/probe-i686" 2>/dev/null; then i686_run=env; else i686_run=qemu-i386; fi
+echo "i686 binaries run $([ "$i686_run" = env ] && echo natively || echo 'under qemu-i386 (the kernel cannot execute them)')"
 
 scenes=()
 while read -r scene _; do
@@ -63,6 +71,7 @@ for real in $reals; do
   while read -r name cc opt extra run; do
     exe=$work/driver-$name
     extra=${extra//_/ }
+    [ "$run" = i686 ] && run=$i686_run
     # shellcheck disable=SC2086
     $cc $flags $opt $extra targets/hash_driver.c $core_src -o "$exe"
     out=$work/out
@@ -71,7 +80,7 @@ for real in $reals; do
       # shellcheck disable=SC2086
       echo "$s $($run "$exe" "$work/$real.$(echo "$s" | tr / _).rtscene" 512)" >>"$out"
     done
-    check "core $name" "$ref" "$out"
+    check "core $name ($([ "$run" = env ] && echo native || echo "$run"))" "$ref" "$out"
   done <<'VARIANTS'
 gcc-O0 gcc -O0 -static env
 gcc-O2 gcc -O2 -static env
@@ -79,7 +88,7 @@ gcc-O3 gcc -O3 -static env
 clang-O0 clang -O0 -static env
 clang-O2 clang -O2 -static env
 clang-O3 clang -O3 -static env
-i686-gcc-O2 gcc -O2 -m32_-msse2_-mfpmath=sse_-static env
+i686-gcc-O2 gcc -O2 -m32_-msse2_-mfpmath=sse_-static i686
 aarch64-gcc-O2 aarch64-linux-gnu-gcc -O2 -static qemu-aarch64
 VARIANTS
 done
