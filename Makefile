@@ -24,7 +24,7 @@ ifeq ($(RT_REAL),fixed)
 CORE_CFLAGS += $(shell $(CC) -mgeneral-regs-only -x c -c /dev/null -o /dev/null 2>/dev/null && echo -mgeneral-regs-only)
 endif
 PKGS := yaml-0.1 spng
-PLATFORM_CFLAGS := $(BASE_CFLAGS) -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -Icore -Iplatform \
+PLATFORM_CFLAGS := $(BASE_CFLAGS) -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -Iinclude -Icore -Iplatform \
 	$(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 LDLIBS := $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lyaml -lspng) -lpthread -lm
 
@@ -54,6 +54,15 @@ $(BUILD)/platform/%.o: platform/%.c
 $(BUILD)/tests/%.o: tests/%.c
 	@mkdir -p $(@D)
 	$(CC) $(PLATFORM_CFLAGS) -MMD -MP -c $< -o $@
+
+# The commit `rtk --version` names (git describe; "unknown" outside a git checkout).
+# version.o is rebuilt when it changes, through a stamp that is rewritten only then.
+RTK_COMMIT := $(shell git describe --always --dirty --abbrev=12 --exclude='*' 2>/dev/null || echo unknown)
+$(BUILD)/commit.stamp: FORCE
+	@mkdir -p $(@D); echo '$(RTK_COMMIT)' | cmp -s - $@ || echo '$(RTK_COMMIT)' >$@
+$(BUILD)/platform/cli/version.o: $(BUILD)/commit.stamp
+$(BUILD)/platform/cli/version.o: PLATFORM_CFLAGS += -DRTK_COMMIT='"$(RTK_COMMIT)"'
+.PHONY: FORCE
 
 $(BUILD)/librtcore.a: $(CORE_OBJ)
 	@rm -f $@

@@ -5,6 +5,7 @@
 #include "cli/info_cmd.h"
 #include "cli/pack_cmd.h"
 #include "cli/render_cmd.h"
+#include "cli/version.h"
 #include <stdio.h>
 #include <string.h>
 
@@ -19,6 +20,7 @@ static const char usage[] = "usage: rtk COMMAND [ARGS]\n"
                             "  debug SCENE.yaml --pixel X,Y   every ray behind one pixel (rtk debug --help)\n"
                             "  info SCENE.yaml                what a scene holds and costs (rtk info --help)\n"
                             "  pack SCENE.yaml -o OUT         the scene as one blob for bare-metal and cross builds\n"
+                            "  --version                      version, build (double/fixed), compiler and commit\n"
                             "\n"
                             "Exit codes: 0 ok, 1 compare threshold not met, 2 bad arguments, 3 bad or missing\n"
                             "input file, 4 output not writable, 5 over the memory cap, 6 interrupted.\n";
@@ -32,6 +34,10 @@ int main(int argc, char **argv)
     const char *cmd = argv[1];
     if (!strcmp(cmd, "--help") || !strcmp(cmd, "-h") || !strcmp(cmd, "help")) {
         fputs(usage, stdout);
+        return RTP_EXIT_OK;
+    }
+    if (!strcmp(cmd, "--version") || !strcmp(cmd, "version")) {
+        puts(rtp_version_line());
         return RTP_EXIT_OK;
     }
     if (!strcmp(cmd, "render")) return rtp_cmd_render(argc - 1, argv + 1);
