@@ -22,12 +22,10 @@ bool rt_test_render(const char *scene_path, unsigned threads, bool use_bvh, rtp_
     opt.aa = -1;
     rtp_scene built;
     if (rtp_scene_open(scene_path, &opt, &built, err, err_size) != 0) return false;
-    out->width = built.scene.camera.width;
-    out->height = built.scene.camera.height;
-    out->rgb = calloc((size_t)out->width * out->height, 3);
+    bool ok = rtp_image_alloc(out, built.scene.camera.width, built.scene.camera.height, "the image");
     rt_tracer tracer = {&built.scene, use_bvh, NULL};
     rtp_threads_options popt = {threads, 0, false, NULL};
-    bool ok = out->rgb && rtp_threads_render(&tracer, &popt, out->rgb);
+    ok = ok && rtp_threads_render(&tracer, &popt, out->rgb);
     rtp_scene_close(&built);
     if (!ok) {
         snprintf(err, err_size, "%s: render failed", scene_path);

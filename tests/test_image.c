@@ -234,7 +234,7 @@ Test(image, atomic_write_into_missing_folder_leaves_nothing)
 {
     char path[128], err[256] = "";
     in_dir(path, sizeof path, "missing/out.ppm");
-    cr_assert_not(rtp_file_write_atomic(path, "x", 1, err, sizeof err));
+    cr_assert_not(rtp_file_write(path, "x", 1, err, sizeof err));
     cr_expect(strstr(err, path) == err && strstr(err, "directory does not exist"), "error: %s", err);
     cr_expect_eq(tmpdir_count(dir), 0);
 }
@@ -244,7 +244,7 @@ Test(image, atomic_write_over_a_directory_leaves_nothing)
     char path[128], err[256] = "";
     in_dir(path, sizeof path, "sub");
     cr_assert_eq(mkdir(path, 0777), 0);
-    cr_assert_not(rtp_file_write_atomic(path, "x", 1, err, sizeof err));
+    cr_assert_not(rtp_file_write(path, "x", 1, err, sizeof err));
     cr_expect(strstr(err, "is a directory"), "error: %s", err);
     cr_expect_eq(tmpdir_count(dir), 1, "a temporary file was left behind");
     cr_expect_eq(tmpdir_count(path), 0);
@@ -255,7 +255,7 @@ Test(image, atomic_write_replaces_existing_file)
     char path[128], err[256];
     in_dir(path, sizeof path, "f.txt");
     put_file(path, "old contents, longer than the new", 33);
-    cr_assert(rtp_file_write_atomic(path, "new", 3, err, sizeof err), "%s", err);
+    cr_assert(rtp_file_write(path, "new", 3, err, sizeof err), "%s", err);
     size_t size;
     unsigned char *bytes = get_file(path, &size);
     cr_expect_eq(size, 3);
@@ -269,7 +269,7 @@ Test(image, atomic_write_honours_umask)
 {
     char path[128], err[256];
     mode_t old = umask(027);
-    bool ok = rtp_file_write_atomic(in_dir(path, sizeof path, "m"), "x", 1, err, sizeof err);
+    bool ok = rtp_file_write(in_dir(path, sizeof path, "m"), "x", 1, err, sizeof err);
     umask(old);
     cr_assert(ok, "%s", err);
     struct stat st;

@@ -2,6 +2,9 @@
 #include "cli/cli.h"
 
 #include "cli/exit_codes.h"
+#include "cli/message.h"
+#include "cli/signals.h"
+#include "mem/mem.h"
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -39,9 +42,9 @@ bool rtp_cli_parse_bytes(const char *s, size_t *out)
 int rtp_cli_usage_error(const char *cmd, const char *msg, const char *arg)
 {
     if (arg)
-        fprintf(stderr, "rtk %s: %s '%s' (see rtk %s --help)\n", cmd, msg, arg, cmd);
+        rtp_message(cmd, "%s '%s' (see rtk %s --help)", msg, arg, cmd);
     else
-        fprintf(stderr, "rtk %s: %s (see rtk %s --help)\n", cmd, msg, cmd);
+        rtp_message(cmd, "%s (see rtk %s --help)", msg, cmd);
     return RTP_EXIT_USAGE;
 }
 
@@ -82,7 +85,7 @@ int rtp_cli_common_option(const char *cmd, const char *usage, int argc, char **a
     const char *arg = argv[*i];
     if (!strcmp(arg, "--help") || !strcmp(arg, "-h")) {
         fputs(usage, stdout);
-        exit(RTP_EXIT_OK);
+        exit(rtp_cli_flush_stdout(cmd));
     }
     return rtp_cli_scene_option(cmd, argc, argv, i, opt);
 }
@@ -95,10 +98,22 @@ int rtp_cli_scene_argument(const char *cmd, const char *arg, const char **scene)
     return RTP_EXIT_OK;
 }
 
+const char *rtp_cli_scene_name(const char *path) { return strcmp(path, "-") ? path : "<stdin>"; }
+
 int rtp_cli_open_scene(const char *cmd, const char *path, const rtp_scene_options *opt, rtp_scene *out)
 {
     char err[RTP_ERR_SIZE];
+    rtp_mem_set_cap(opt->max_memory);
     int rc = rtp_scene_open(path, opt, out, err, sizeof err);
-    if (rc != RTP_EXIT_OK) fprintf(stderr, "rtk %s: %s\n", cmd, err);
+    if (rc != RTP_EXIT_OK) rtp_message(cmd, "%s", err);
     return rc;
+}
+
+int rtp_cli_flush_stdout(const char *cmd)
+{
+    int e = fflush(stdout) == 0 ? 0 : errno;
+    if (e == 0 && ferror(stdout)) e = EIO;
+    if (e == 0) return RTP_EXIT_OK;
+    rtp_message(cmd, "cannot write to standard output: %s", strerror(e));
+    return RTP_EXIT_OUTPUT;
 }

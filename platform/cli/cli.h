@@ -26,8 +26,14 @@ int rtp_cli_common_option(const char *cmd, const char *usage, int argc, char **a
 /* An argument no option took: the scene file the first time, else a usage error (an
  * unknown option or a second file). Returns RTP_EXIT_OK or RTP_EXIT_USAGE. */
 int rtp_cli_scene_argument(const char *cmd, const char *arg, const char **scene);
-/* rtp_scene_open, reporting a failure as "rtk <cmd>: <what went wrong>" on stderr. */
+/* rtp_scene_open under the cap opt->max_memory, reporting a failure as
+ * "rtk <cmd>: <what went wrong>" on stderr. */
 int rtp_cli_open_scene(const char *cmd, const char *path, const rtp_scene_options *opt, rtp_scene *out);
+/* The scene's name in messages: the path, or "<stdin>" for "-". */
+const char *rtp_cli_scene_name(const char *path);
+/* Flushes standard output; a failed write there (a full disk, a closed pipe) is reported
+ * as one line and gives RTP_EXIT_OUTPUT, else RTP_EXIT_OK. */
+int rtp_cli_flush_stdout(const char *cmd);
 
 #define RTP_CLI_SCENE_OPTIONS_HELP                                                                    \
     "  --width N           override the camera's Render Width (px), 1..16384\n"                       \
@@ -35,7 +41,8 @@ int rtp_cli_open_scene(const char *cmd, const char *path, const rtp_scene_option
     "  --depth N           override Maximum Recursion Depth, 0..64\n"                                 \
     "  --aa N              override Samples Per Pixel: 4^N samples per pixel, N 0..7\n"               \
     "  --spp N             the same as N samples per pixel, N a power of 4 (1, 4, ..., 16384)\n"      \
-    "  --assets DIR        the folder that contains assets/ (default: found from the scene's path)\n" \
-    "  --max-memory SIZE   cap on scene memory, e.g. 512M or 4G (default 4G)\n"
+    "  --assets DIR        the folder that contains assets/ (default: found from the scene's path;\n" \
+    "                      for the scene '-', read from standard input: the working folder)\n"        \
+    "  --max-memory SIZE   cap on all the memory rtk allocates, e.g. 512M or 4G (default 4G)\n"
 
 #endif

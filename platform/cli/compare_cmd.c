@@ -1,9 +1,15 @@
 /* `rtk compare`: PSNR and difference statistics of two images, a heat map, thresholds. */
 #include "cli/compare_cmd.h"
 
+#include "cli/cli.h"
 #include "cli/exit_codes.h"
+#include "cli/message.h"
+#include "cli/signals.h"
 #include "debug/json_out.h"
 #include "image/image_compare.h"
+#include "load/input_file.h"
+#include "load/scene_open.h"
+#include "mem/mem.h"
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -19,7 +25,8 @@ static const char help_text[] =
     "more than 2, and the first worst pixel (x, y from the top left) with both colours.\n"
     "\n"
     "  --diff OUT      write a heat map of each pixel's largest channel difference\n"
-    "                  (PNG if OUT ends in .png, else PPM): black = identical, then\n"
+    "                  (PNG if OUT ends in .png, else PPM; '-': PPM on standard\n"
+    "                  output, instead of the numbers): black = identical, then\n"
     "                  blue (1 level), green (4), yellow (16), red (64 or more)\n"
     "  --min-psnr DB   exit 1 when PSNR is below DB\n"
     "  --max-diff N    exit 1 when some channel differs by more than N levels (0-255)\n"
@@ -27,7 +34,8 @@ static const char help_text[] =
     "  --help          show this help\n"
     "\n"
     "Exit status: 0 thresholds met, 1 a threshold missed, 2 bad arguments,\n"
-    "3 an image is unreadable or the sizes differ, 4 the --diff image could not be written.\n";
+    "3 an image is unreadable or the sizes differ, 4 the --diff image or standard output\n"
+    "could not be written, 5 over the memory cap (4G), 6 interrupted.\n";
 
 typedef struct {
     const char *a, *b, *diff;
@@ -36,11 +44,12 @@ typedef struct {
     bool json;
 } compare_options;
 
+static int usage_error(const char *fmt, const char *arg) __attribute__((format(printf, 1, 0)));
 static int usage_error(const char *fmt, const char *arg)
 {
-    fputs("rtk compare: ", stderr);
-    fprintf(stderr, fmt, arg);
-    fputs(" (see rtk compare --help)\n", stderr);
+    char what[1024];
+    snprintf(what, sizeof what, fmt, arg);
+    rtp_message("compare", "%s (see rtk compare --help)", what);
     return RTP_EXIT_USAGE;
 }
 
@@ -53,7 +62,7 @@ static int parse_options(int argc, char **argv, compare_options *o)
         if (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0) {
             fputs(usage_line, stdout);
             fputs(help_text, stdout);
-            return RTP_EXIT_OK;
+            return rtp_cli_flush_stdout("compare");
         }
         if (strcmp(arg, "--json") == 0) {
             o->json = true;
@@ -89,6 +98,8 @@ static int parse_options(int argc, char **argv, compare_options *o)
         }
     }
     if (!o->b) return usage_error("%s", "needs two images, A and B");
+    if (o->diff && !strcmp(o->diff, "-") && o->json)
+        return usage_error("%s", "--json and --diff - would both write to standard output");
     return -1;
 }
 
@@ -132,42 +143,45 @@ static void print_text(const compare_options *o, const rtp_image_metrics *m)
 /* Reads, measures, reports and writes the heat map; returns the exit code. */
 static int run(const compare_options *o, rtp_image *a, rtp_image *b)
 {
-    char err[512];
+    char err[1024];
     if (!rtp_image_read(o->a, a, err, sizeof err) || !rtp_image_read(o->b, b, err, sizeof err)) {
-        fprintf(stderr, "rtk compare: %s\n", err);
-        return RTP_EXIT_INPUT;
+        rtp_message("compare", "%s", err);
+        return rtp_load_failure_code();
     }
     rtp_image_metrics m;
     if (!rtp_image_compare(a, b, &m)) {
-        fprintf(stderr, "rtk compare: %s is %ux%u but %s is %ux%u\n", o->a, a->width, a->height, o->b, b->width,
-                b->height);
+        rtp_message("compare", "%s is %ux%u but %s is %ux%u", o->a, a->width, a->height, o->b, b->width, b->height);
         return RTP_EXIT_INPUT;
     }
-    if (o->json)
-        print_json(o, &m);
-    else
-        print_text(o, &m);
-    fflush(stdout);
+    bool diff_to_stdout = o->diff && !strcmp(o->diff, "-");
+    if (!diff_to_stdout) {
+        if (o->json)
+            print_json(o, &m);
+        else
+            print_text(o, &m);
+        int code = rtp_cli_flush_stdout("compare");
+        if (code != RTP_EXIT_OK) return code;
+    }
     if (o->diff) {
         rtp_image map;
-        bool ok = rtp_image_diff_map(a, b, &map);
-        if (!ok)
-            snprintf(err, sizeof err, "%s: out of memory", o->diff);
-        else
-            ok = rtp_image_write(o->diff, &map, err, sizeof err);
+        if (!rtp_image_diff_map(a, b, &map)) {
+            rtp_message("compare", "%s: %s", o->diff, rtp_mem_refusal());
+            return RTP_EXIT_MEMORY;
+        }
+        bool ok = rtp_image_write(o->diff, &map, err, sizeof err);
         rtp_image_free(&map);
         if (!ok) {
-            fprintf(stderr, "rtk compare: %s\n", err);
-            return RTP_EXIT_OUTPUT;
+            rtp_message("compare", "%s", err);
+            return rtp_mem_refused() ? RTP_EXIT_MEMORY : RTP_EXIT_OUTPUT;
         }
     }
     int code = RTP_EXIT_OK;
     if (m.psnr < o->min_psnr) {
-        fprintf(stderr, "rtk compare: PSNR %.3f dB is below --min-psnr %g\n", m.psnr, o->min_psnr);
+        rtp_message("compare", "PSNR %.3f dB is below --min-psnr %g", m.psnr, o->min_psnr);
         code = RTP_EXIT_THRESHOLD;
     }
     if (m.max_diff > o->max_diff) {
-        fprintf(stderr, "rtk compare: max diff %u exceeds --max-diff %u\n", m.max_diff, o->max_diff);
+        rtp_message("compare", "max diff %u exceeds --max-diff %u", m.max_diff, o->max_diff);
         code = RTP_EXIT_THRESHOLD;
     }
     return code;
@@ -178,6 +192,8 @@ int rtp_cmd_compare(int argc, char **argv)
     compare_options o;
     int code = parse_options(argc, argv, &o);
     if (code >= 0) return code;
+    rtp_signals_install("compare", NULL);
+    if (o.diff) rtp_input_forbid(o.diff);
     rtp_image a = {0}, b = {0};
     code = run(&o, &a, &b);
     rtp_image_free(&a);

@@ -3,10 +3,13 @@
 
 #include "cli/cli.h"
 #include "cli/exit_codes.h"
+#include "cli/message.h"
+#include "cli/signals.h"
 #include "debug/debug_output.h"
+#include "load/input_file.h"
+#include "mem/mem.h"
 #include "thread/threads.h"
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -29,7 +32,8 @@ static const char usage[] =
     "  --svg FILE          also draw it: the image with the pixel marked, and the rays\n"
     "                      projected on the Z-Y (side) and X-Z (top) planes\n" RTP_CLI_SCENE_OPTIONS_HELP "\n"
     "Exit codes: 0 ok, 2 bad arguments (including a pixel outside the image), 3 bad or\n"
-    "missing input file, 4 SVG not writable, 5 over the memory cap.\n";
+    "missing input file, 4 SVG or standard output not writable, 5 over the memory cap,\n"
+    "6 interrupted.\n";
 
 typedef struct {
     const char *scene, *pixel, *svg;
@@ -104,28 +108,21 @@ static int check_pixel(debug_args *a, const rt_camera *cam)
     return RTP_EXIT_OK;
 }
 
-static int write_svg(const debug_args *a, const rtp_pixel_trace *pt)
+/* img: the scene's image (allocated by rtp_scene_open), rendered here into the SVG. */
+static int write_svg(const debug_args *a, const rtp_pixel_trace *pt, rtp_image *img)
 {
-    const rt_scene *scene = &pt->built->scene;
-    const rt_camera *cam = &scene->camera;
-    rtp_image img = {cam->width, cam->height, calloc((size_t)cam->width * cam->height, 3)};
-    if (!img.rgb) {
-        fprintf(stderr, "rtk debug: %s: no memory for a %ux%u image\n", a->scene, img.width, img.height);
+    rt_tracer tracer = {&pt->built->scene, true, NULL};
+    rtp_threads_options popt = {0, 0, isatty(STDERR_FILENO) != 0, NULL};
+    char err[RTP_ERR_SIZE];
+    if (!rtp_threads_render(&tracer, &popt, img->rgb)) {
+        rtp_message("debug", "%s: no memory for the render's threads", rtp_cli_scene_name(a->scene));
         return RTP_EXIT_MEMORY;
     }
-    rt_tracer tracer = {scene, true, NULL};
-    rtp_threads_options popt = {0, 0, isatty(STDERR_FILENO) != 0, NULL};
-    int rc = RTP_EXIT_OK;
-    char err[RTP_ERR_SIZE];
-    if (!rtp_threads_render(&tracer, &popt, img.rgb)) {
-        fprintf(stderr, "rtk debug: %s: the render for the SVG failed\n", a->scene);
-        rc = RTP_EXIT_MEMORY;
-    } else if (!rtp_debug_write_svg(a->svg, pt, &img, err, sizeof err)) {
-        fprintf(stderr, "rtk debug: %s\n", err);
-        rc = RTP_EXIT_OUTPUT;
+    if (!rtp_debug_write_svg(a->svg, pt, img, err, sizeof err)) {
+        rtp_message("debug", "%s", err);
+        return rtp_mem_refused() ? RTP_EXIT_MEMORY : RTP_EXIT_OUTPUT;
     }
-    rtp_image_free(&img);
-    return rc;
+    return RTP_EXIT_OK;
 }
 
 int rtp_cmd_debug(int argc, char **argv)
@@ -133,26 +130,29 @@ int rtp_cmd_debug(int argc, char **argv)
     debug_args a;
     int rc = parse_args(argc, argv, &a);
     if (rc != RTP_EXIT_OK) return rc;
+    rtp_signals_install("debug", rtp_cli_scene_name(a.scene));
+    if (a.svg) rtp_input_forbid(a.svg);
     rtp_scene built;
+    a.build.with_image = a.svg != NULL;
     rc = rtp_cli_open_scene("debug", a.scene, &a.build, &built);
     if (rc != RTP_EXIT_OK) return rc;
     rtp_pixel_trace pt;
     rc = check_pixel(&a, &built.scene.camera);
     if (rc == RTP_EXIT_OK && !rtp_pixel_trace_run(&pt, &built, a.x, a.y, a.sample, LOG_CAPACITY)) {
-        fprintf(stderr, "rtk debug: no memory for the ray log\n");
+        rtp_message("debug", "%s", rtp_mem_refusal());
         rc = RTP_EXIT_MEMORY;
     }
     if (rc != RTP_EXIT_OK) {
         rtp_scene_close(&built);
         return rc;
     }
-    if (pt.log.overflow)
-        fprintf(stderr, "rtk debug: the ray log is full: only the first %u rays are shown\n", LOG_CAPACITY);
+    if (pt.log.overflow) rtp_message("debug", "the ray log is full: only the first %u rays are shown", LOG_CAPACITY);
     if (a.json)
         rtp_debug_print_json(stdout, &pt);
     else
         rtp_debug_print_text(stdout, &pt);
-    if (a.svg) rc = write_svg(&a, &pt);
+    rc = rtp_cli_flush_stdout("debug");
+    if (rc == RTP_EXIT_OK && a.svg) rc = write_svg(&a, &pt, &built.image);
     rtp_pixel_trace_free(&pt);
     rtp_scene_close(&built);
     return rc;

@@ -3,6 +3,7 @@
 
 #include "cli/cli.h"
 #include "cli/exit_codes.h"
+#include "cli/signals.h"
 #include "debug/json_out.h"
 #include "debug/scene_stats.h"
 #include "render.h"
@@ -18,7 +19,8 @@ static const char usage[] = "usage: rtk info SCENE.yaml [--json] [options]\n"
                             "depth and SAH cost, and the scene memory (arena) used.\n"
                             "\n"
                             "  --json              one JSON document instead of text\n" RTP_CLI_SCENE_OPTIONS_HELP "\n"
-                            "Exit codes: 0 ok, 2 bad arguments, 3 bad or missing input file, 5 over the memory cap.\n";
+                            "Exit codes: 0 ok, 2 bad arguments, 3 bad or missing input file, 4 standard output\n"
+                            "not writable, 5 over the memory cap, 6 interrupted.\n";
 
 static const char *const shadow_modes[] = {"none", "opaque", "coloured"};
 static const char *const monte_carlo_modes[] = {"off", "mode 1", "mode 2"};
@@ -151,6 +153,7 @@ int rtp_cmd_info(int argc, char **argv)
     info_args a;
     int rc = parse_args(argc, argv, &a);
     if (rc != RTP_EXIT_OK) return rc;
+    rtp_signals_install("info", rtp_cli_scene_name(a.scene));
     rtp_scene built;
     rc = rtp_cli_open_scene("info", a.scene, &a.build, &built);
     if (rc != RTP_EXIT_OK) return rc;
@@ -161,5 +164,5 @@ int rtp_cmd_info(int argc, char **argv)
     else
         print_text(a.scene, &built, &st);
     rtp_scene_close(&built);
-    return RTP_EXIT_OK;
+    return rtp_cli_flush_stdout("info");
 }

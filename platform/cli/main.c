@@ -1,11 +1,14 @@
 /* rtk: the command line. Dispatches to one subcommand per file. */
+#include "cli/cli.h"
 #include "cli/compare_cmd.h"
 #include "cli/debug_cmd.h"
 #include "cli/exit_codes.h"
 #include "cli/info_cmd.h"
+#include "cli/message.h"
 #include "cli/pack_cmd.h"
 #include "cli/render_cmd.h"
 #include "cli/version.h"
+#include "mem/mem.h"
 #include <stdio.h>
 #include <string.h>
 
@@ -28,23 +31,24 @@ static const char usage[] = "usage: rtk COMMAND [ARGS]\n"
 int main(int argc, char **argv)
 {
     if (argc < 2) {
-        fputs("rtk: no command given (see rtk --help)\n", stderr);
+        rtp_message(NULL, "no command given (see rtk --help)");
         return RTP_EXIT_USAGE;
     }
+    rtp_mem_set_cap(rtp_scene_default_options().max_memory); /* the scene commands' --max-memory overrides it */
     const char *cmd = argv[1];
     if (!strcmp(cmd, "--help") || !strcmp(cmd, "-h") || !strcmp(cmd, "help")) {
         fputs(usage, stdout);
-        return RTP_EXIT_OK;
+        return rtp_cli_flush_stdout(NULL);
     }
     if (!strcmp(cmd, "--version") || !strcmp(cmd, "version")) {
         puts(rtp_version_line());
-        return RTP_EXIT_OK;
+        return rtp_cli_flush_stdout(NULL);
     }
     if (!strcmp(cmd, "render")) return rtp_cmd_render(argc - 1, argv + 1);
     if (!strcmp(cmd, "compare")) return rtp_cmd_compare(argc - 1, argv + 1);
     if (!strcmp(cmd, "debug")) return rtp_cmd_debug(argc - 1, argv + 1);
     if (!strcmp(cmd, "info")) return rtp_cmd_info(argc - 1, argv + 1);
     if (!strcmp(cmd, "pack")) return rtp_cmd_pack(argc - 1, argv + 1);
-    fprintf(stderr, "rtk: unknown command '%s' (see rtk --help)\n", cmd);
+    rtp_message(NULL, "unknown command '%s' (see rtk --help)", cmd);
     return RTP_EXIT_USAGE;
 }

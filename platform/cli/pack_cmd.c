@@ -6,21 +6,24 @@
 #include "blob.h"
 #include "cli/cli.h"
 #include "cli/exit_codes.h"
+#include "cli/message.h"
+#include "cli/signals.h"
 #include "image/file_write.h"
-#include "image/image.h"
+#include "load/input_file.h"
+#include "mem/mem.h"
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
-static const char usage[] = "usage: rtk pack SCENE.yaml -o OUT.rtscene [options]\n"
-                            "\n"
-                            "Writes the scene, with its meshes and textures and the overrides below applied, as\n"
-                            "one blob that core/blob.h reads. The blob holds this build's scalar type (double or\n"
-                            "fixed): a build of the other type rejects it.\n"
-                            "\n"
-                            "  -o, --output FILE   the blob to write (atomically)\n" RTP_CLI_SCENE_OPTIONS_HELP "\n"
-                            "Exit codes: 0 ok, 2 bad arguments, 3 bad or missing input file, 4 output not\n"
-                            "writable, 5 over the memory cap.\n";
+static const char usage[] =
+    "usage: rtk pack SCENE.yaml -o OUT.rtscene [options]\n"
+    "\n"
+    "Writes the scene, with its meshes and textures and the overrides below applied, as\n"
+    "one blob that core/blob.h reads. The blob holds this build's scalar type (double or\n"
+    "fixed): a build of the other type rejects it.\n"
+    "\n"
+    "  -o, --output FILE   the blob to write (atomically; '-': standard output)\n" RTP_CLI_SCENE_OPTIONS_HELP "\n"
+    "Exit codes: 0 ok, 2 bad arguments, 3 bad or missing input file, 4 output not\n"
+    "writable, 5 over the memory cap, 6 interrupted.\n";
 
 int rtp_cmd_pack(int argc, char **argv)
 {
@@ -40,21 +43,23 @@ int rtp_cmd_pack(int argc, char **argv)
         }
     }
     if (!scene || !output) return rtp_cli_usage_error("pack", "give a scene file and -o FILE", NULL);
+    rtp_signals_install("pack", rtp_cli_scene_name(scene));
+    rtp_input_forbid(output);
     rtp_scene built;
     /* Building checks the scene as a render would, so a blob always renders. */
     int rc = rtp_cli_open_scene("pack", scene, &build, &built);
     if (rc != RTP_EXIT_OK) return rc;
     char err[RTP_ERR_SIZE];
     size_t size = rt_blob_size(&built.loaded.desc);
-    uint8_t *bytes = malloc(size);
+    uint8_t *bytes = rtp_mem_alloc(size, "the scene blob");
     if (!bytes || rt_blob_write(&built.loaded.desc, bytes, size) != size) {
-        fprintf(stderr, "rtk pack: %s: no memory for a %zu-byte blob\n", scene, size);
+        rtp_message("pack", "%s: %s", rtp_cli_scene_name(scene), rtp_mem_refusal());
         rc = RTP_EXIT_MEMORY;
-    } else if (!rtp_file_write_atomic(output, bytes, size, err, sizeof err)) {
-        fprintf(stderr, "rtk pack: %s\n", err);
+    } else if (!rtp_file_write(output, bytes, size, err, sizeof err)) {
+        rtp_message("pack", "%s", err);
         rc = RTP_EXIT_OUTPUT;
     }
-    free(bytes);
+    rtp_mem_free(bytes);
     rtp_scene_close(&built);
     return rc;
 }

@@ -3,30 +3,25 @@
 
 #include "cli/cli.h"
 #include "cli/exit_codes.h"
+#include "cli/message.h"
+#include "cli/signals.h"
 #include "image/image.h"
+#include "load/input_file.h"
 #include "load/scene_open.h"
 #include "sha256.h"
 #include "thread/threads.h"
-#include <signal.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
-static volatile int interrupted;
-
-static void on_signal(int sig)
-{
-    (void)sig;
-    interrupted = 1;
-}
-
 static const char usage[] = "usage: rtk render SCENE.yaml [-o OUT.png|OUT.ppm] [options]\n"
                             "\n"
-                            "Renders a CSE457 scene file. The output format follows the file name (.png, else\n"
-                            "binary PPM); the file is written atomically, or not at all on error.\n"
+                            "Renders a CSE457 scene file ('-': read from standard input). The output format\n"
+                            "follows the file name (.png, else binary PPM); the file is written atomically, or\n"
+                            "not at all on error.\n"
                             "\n"
-                            "  -o, --output FILE   image to write (optional with --hash)\n" RTP_CLI_SCENE_OPTIONS_HELP
+                            "  -o, --output FILE   image to write (optional with --hash); '-' writes binary PPM\n"
+                            "                      to standard output\n" RTP_CLI_SCENE_OPTIONS_HELP
                             "  --threads N         worker threads for the BVH build and the render (default: all\n"
                             "                      cores); the image does not depend on it\n"
                             "  --tile N            tile side in pixels (default 32); the image does not depend on it\n"
@@ -83,6 +78,8 @@ static int parse_args(int argc, char **argv, render_args *a)
     }
     if (!a->scene) return rtp_cli_usage_error("render", "no scene file given", NULL);
     if (!a->output && !a->hash) return rtp_cli_usage_error("render", "nothing to do: give -o FILE and/or --hash", NULL);
+    if (a->hash && a->output && !strcmp(a->output, "-"))
+        return rtp_cli_usage_error("render", "--hash and -o - would both write to standard output", NULL);
     return RTP_EXIT_OK;
 }
 
@@ -99,35 +96,36 @@ int rtp_cmd_render(int argc, char **argv)
     render_args a;
     int rc = parse_args(argc, argv, &a);
     if (rc != RTP_EXIT_OK) return rc;
+    const char *scene = rtp_cli_scene_name(a.scene);
+    rtp_signals_install("render", scene);
+    if (a.output) rtp_input_forbid(a.output);
     rtp_scene built;
+    a.build.with_image = true;
     rc = rtp_cli_open_scene("render", a.scene, &a.build, &built);
     if (rc != RTP_EXIT_OK) return rc;
-    const rt_camera *cam = &built.scene.camera;
-    rtp_image img = {cam->width, cam->height, calloc((size_t)cam->width * cam->height, 3)};
-    if (!img.rgb) {
-        fprintf(stderr, "rtk render: %s: no memory for a %ux%u image\n", a.scene, cam->width, cam->height);
-        rtp_scene_close(&built);
-        return RTP_EXIT_MEMORY;
-    }
+    rtp_image img = built.image;
+    built.image = (rtp_image){0};
     rt_tracer tracer = {&built.scene, a.use_bvh, NULL};
     a.parallel.progress = !a.quiet && (a.force_progress || isatty(STDERR_FILENO));
-    a.parallel.cancel = &interrupted;
-    signal(SIGINT, on_signal);
-    signal(SIGTERM, on_signal);
-    bool complete = rtp_threads_render(&tracer, &a.parallel, img.rgb);
+    a.parallel.cancel = rtp_signals_defer(); /* stop between tiles, and free what the render holds */
+    bool complete = rtp_threads_render(&tracer, &a.parallel, img.rgb), stopped = *a.parallel.cancel;
     rtp_scene_close(&built);
-    if (!complete) {
-        fprintf(stderr, "rtk render: %s: interrupted; nothing written\n", a.scene);
+    if (!complete || stopped) {
         rtp_image_free(&img);
-        return RTP_EXIT_INTERRUPTED;
+        if (stopped) return rtp_signals_stopped();
+        rtp_message("render", "%s: no memory for the render's threads", scene);
+        return RTP_EXIT_MEMORY;
     }
-    rc = RTP_EXIT_OK;
+    rtp_signals_immediate();
     char err[RTP_ERR_SIZE];
     if (a.output && !rtp_image_write(a.output, &img, err, sizeof err)) {
-        fprintf(stderr, "rtk render: %s\n", err);
+        rtp_message("render", "%s", err);
         rc = RTP_EXIT_OUTPUT;
     }
-    if (rc == RTP_EXIT_OK && a.hash) print_hash(&img);
+    if (rc == RTP_EXIT_OK && a.hash) {
+        print_hash(&img);
+        rc = rtp_cli_flush_stdout("render");
+    }
     rtp_image_free(&img);
     return rc;
 }

@@ -4,6 +4,8 @@
 
 #include "debug/svg_view.h"
 #include "image/file_write.h"
+#include "mem/mem.h"
+#include "mem/mem_stream.h"
 #include <math.h>
 #include <stdlib.h>
 
@@ -153,7 +155,7 @@ static bool image_panel(FILE *out, const rtp_pixel_trace *pt, const rtp_image *i
             "style=\"image-rendering:pixelated\" xlink:href=\"data:image/png;base64,",
             left, TOP, w, h);
     base64(out, png, size);
-    free(png);
+    rtp_mem_free(png);
     fputs("\"/>\n", out);
     /* The pixel itself, and two rings (dark and light) that show on any background. */
     double x = left + s * pt->x, y = TOP + s * pt->y, cell = s > 1 ? s : 1;
@@ -209,19 +211,18 @@ static bool draw(FILE *out, const rtp_pixel_trace *pt, const rtp_image *img, con
 bool rtp_debug_write_svg(const char *path, const rtp_pixel_trace *pt, const rtp_image *render, char *err,
                          size_t err_size)
 {
-    char *text = NULL;
-    size_t size = 0;
+    rtp_mem_buffer text = {0};
     rt_aabb *bounds = rtp_svg_object_bounds(&pt->built->scene);
-    FILE *out = bounds ? open_memstream(&text, &size) : NULL;
+    FILE *out = bounds ? rtp_mem_stream_open(&text) : NULL;
     if (!out) {
-        free(bounds);
-        snprintf(err, err_size, "%s: out of memory", path);
+        rtp_mem_free(bounds);
+        snprintf(err, err_size, "%s: %s", path, rtp_mem_refusal());
         return false;
     }
     bool drawn = draw(out, pt, render, bounds, err, err_size), closed = fclose(out) == 0;
-    if (drawn && !closed) snprintf(err, err_size, "%s: out of memory", path);
-    bool ok = drawn && closed && rtp_file_write_atomic(path, text, size, err, err_size);
-    free(text);
-    free(bounds);
+    if (drawn && !closed) snprintf(err, err_size, "%s: %s", path, rtp_mem_refusal());
+    bool ok = drawn && closed && rtp_file_write(path, text.data, text.size, err, err_size);
+    rtp_mem_buffer_free(&text);
+    rtp_mem_free(bounds);
     return ok;
 }

@@ -1,12 +1,12 @@
 /* Tracing one pixel with the ray log, and the tree over the log; see pixel_trace.h. */
 #include "debug/pixel_trace.h"
 
-#include <stdlib.h>
+#include "mem/mem.h"
 #include <string.h>
 
 static uint32_t *index_array(uint32_t count)
 {
-    uint32_t *a = malloc((count ? count : 1) * sizeof *a);
+    uint32_t *a = rtp_mem_alloc((count ? count : 1) * sizeof *a, "the ray log");
     if (a) memset(a, 0xff, (count ? count : 1) * sizeof *a); /* every entry RT_NO_PARENT */
     return a;
 }
@@ -51,8 +51,8 @@ bool rtp_pixel_trace_run(rtp_pixel_trace *pt, const rtp_scene *built, uint32_t x
     pt->y = y;
     pt->samples = rt_camera_samples(&scene->camera);
     pt->sample = sample;
-    pt->log.rays = calloc(capacity ? capacity : 1, sizeof *pt->log.rays);
-    pt->log.lights = calloc(capacity ? capacity : 1, sizeof *pt->log.lights);
+    pt->log.rays = rtp_mem_calloc(capacity ? capacity : 1, sizeof *pt->log.rays, "the ray log");
+    pt->log.lights = rtp_mem_calloc(capacity ? capacity : 1, sizeof *pt->log.lights, "the ray log");
     pt->log.ray_capacity = pt->log.light_capacity = capacity;
     pt->first_child = index_array(capacity);
     pt->first_shadow = index_array(capacity);
@@ -81,13 +81,13 @@ bool rtp_pixel_trace_run(rtp_pixel_trace *pt, const rtp_scene *built, uint32_t x
 
 void rtp_pixel_trace_free(rtp_pixel_trace *pt)
 {
-    free(pt->log.rays);
-    free(pt->log.lights);
-    free(pt->first_child);
-    free(pt->first_shadow);
-    free(pt->next_sibling);
-    free(pt->first_light);
-    free(pt->next_light);
+    rtp_mem_free(pt->log.rays);
+    rtp_mem_free(pt->log.lights);
+    rtp_mem_free(pt->first_child);
+    rtp_mem_free(pt->first_shadow);
+    rtp_mem_free(pt->next_sibling);
+    rtp_mem_free(pt->first_light);
+    rtp_mem_free(pt->next_light);
     memset(pt, 0, sizeof *pt);
 }
 

@@ -2,6 +2,7 @@
 #include "debug/svg_view.h"
 
 #include "bvh.h"
+#include "mem/mem.h"
 #include <math.h>
 #include <stdlib.h>
 
@@ -32,7 +33,8 @@ void rtp_svg_view_map(const rtp_svg_view *v, const double p[3], double *x, doubl
 
 rt_aabb *rtp_svg_object_bounds(const rt_scene *scene)
 {
-    rt_aabb *b = malloc((scene->object_count ? scene->object_count : 1) * sizeof *b);
+    rt_aabb *b =
+        rtp_mem_alloc((scene->object_count ? scene->object_count : 1) * sizeof *b, "the SVG's object outlines");
     if (!b) return NULL;
     rt_aabb empty = {{RT_REAL_MAX, RT_REAL_MAX, RT_REAL_MAX},
                      {rt_neg(RT_REAL_MAX), rt_neg(RT_REAL_MAX), rt_neg(RT_REAL_MAX)}};

@@ -18,7 +18,7 @@ void rtp_svg_view_fit(rtp_svg_view *v, const double lo[3], const double hi[3]);
 /* Page coordinates of a world point. */
 void rtp_svg_view_map(const rtp_svg_view *v, const double p[3], double *x, double *y);
 
-/* World bounds of every object (meshes: of their triangles), malloc'd; NULL when out of memory. */
+/* World bounds of every object (meshes: of their triangles), rtp_mem's; NULL when out of memory. */
 rt_aabb *rtp_svg_object_bounds(const rt_scene *scene);
 
 /* Draws every object's outline in the view: each triangle's edges when the scene has at most

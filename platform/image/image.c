@@ -2,16 +2,12 @@
 #include "image/image.h"
 #include "image/file_write.h"
 
-#include <errno.h>
-#include <fcntl.h>
+#include "mem/mem.h"
 #include <spng.h>
 #include <stdarg.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 #include <strings.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 /* Against decompression bombs and absurd headers: a 16384x16384 RGB image is 768 MiB. */
 #define RTP_IMAGE_MAX_SIDE 16384u
@@ -35,45 +31,6 @@ static bool fail(char *err, size_t err_size, const char *path, const char *fmt, 
     return false;
 }
 
-static bool read_whole_file(const char *path, uint8_t **data, size_t *size, char *err, size_t err_size)
-{
-    int fd = open(path, O_RDONLY | O_CLOEXEC);
-    if (fd < 0) return fail(err, err_size, path, "cannot open: %s", strerror(errno));
-    struct stat st;
-    const char *why = NULL;
-    if (fstat(fd, &st) != 0)
-        why = strerror(errno);
-    else if (S_ISDIR(st.st_mode))
-        why = "is a directory";
-    else if (!S_ISREG(st.st_mode))
-        why = "not a regular file";
-    else if (st.st_size > (off_t)RTP_IMAGE_MAX_FILE)
-        why = "file too large for an image (over 1 GiB)";
-    else if (st.st_size == 0)
-        why = "empty file";
-    uint8_t *buf = why ? NULL : malloc((size_t)st.st_size);
-    if (!why && !buf) why = "out of memory";
-    size_t got = 0;
-    while (!why && got < (size_t)st.st_size) {
-        ssize_t n = read(fd, buf + got, (size_t)st.st_size - got);
-        if (n < 0 && errno == EINTR) continue;
-        if (n < 0)
-            why = strerror(errno);
-        else if (n == 0)
-            break; /* the file shrank while reading: the parsers report it as truncated */
-        else
-            got += (size_t)n;
-    }
-    close(fd);
-    if (why) {
-        free(buf);
-        return fail(err, err_size, path, "%s", why);
-    }
-    *data = buf;
-    *size = got;
-    return true;
-}
-
 static bool check_size(const char *path, uint32_t w, uint32_t h, char *err, size_t err_size)
 {
     if (w == 0 || h == 0) return fail(err, err_size, path, "image has zero width or height");
@@ -83,10 +40,29 @@ static bool check_size(const char *path, uint32_t w, uint32_t h, char *err, size
     return true;
 }
 
+/* libspng allocates through these, so its buffers count against --max-memory too. */
+static void *codec_malloc(size_t size) { return rtp_mem_alloc(size, "the PNG codec's buffers"); }
+static void *codec_realloc(void *p, size_t size) { return rtp_mem_realloc(p, size, "the PNG codec's buffers"); }
+static void *codec_calloc(size_t count, size_t size) { return rtp_mem_calloc(count, size, "the PNG codec's buffers"); }
+static spng_ctx *codec_new(int flags)
+{
+    struct spng_alloc counted = {codec_malloc, codec_realloc, codec_calloc, rtp_mem_free};
+    return spng_ctx_new2(&counted, flags);
+}
+
+bool rtp_image_alloc(rtp_image *img, uint32_t width, uint32_t height, const char *what)
+{
+    char described[96];
+    snprintf(described, sizeof described, "%s (%ux%u)", what, width, height);
+    *img = (rtp_image){.width = width, .height = height};
+    img->rgb = rtp_mem_calloc((size_t)width * height, 3, described);
+    return img->rgb != NULL;
+}
+
 static bool png_decode(const char *path, const uint8_t *data, size_t size, rtp_image *out, char *err, size_t err_size)
 {
-    spng_ctx *ctx = spng_ctx_new(0);
-    if (!ctx) return fail(err, err_size, path, "out of memory");
+    spng_ctx *ctx = codec_new(0);
+    if (!ctx) return fail(err, err_size, path, "%s", rtp_mem_refusal());
     struct spng_ihdr ihdr;
     size_t len = 0;
     uint8_t *rgb = NULL;
@@ -95,12 +71,16 @@ static bool png_decode(const char *path, const uint8_t *data, size_t size, rtp_i
     if (rc == 0) rc = spng_set_png_buffer(ctx, data, size);
     if (rc == 0) rc = spng_get_ihdr(ctx, &ihdr);
     if (rc == 0) rc = spng_decoded_image_size(ctx, SPNG_FMT_RGB8, &len);
-    if (rc == 0 && !(rgb = malloc(len))) rc = SPNG_EMEM;
+    /* The pixels are allocated from the header, before any is decoded. */
+    char what[64];
+    if (rc == 0) snprintf(what, sizeof what, "the decoded image (%ux%u)", ihdr.width, ihdr.height);
+    if (rc == 0 && !(rgb = rtp_mem_alloc(len, what))) rc = SPNG_EMEM;
     /* No SPNG_DECODE_GAMMA / _TRNS: the stored 8-bit values, as the reference tools read them. */
     if (rc == 0) rc = spng_decode_image(ctx, rgb, len, SPNG_FMT_RGB8, 0);
     spng_ctx_free(ctx);
     if (rc != 0) {
-        free(rgb);
+        rtp_mem_free(rgb);
+        if (rc == SPNG_EMEM) return fail(err, err_size, path, "%s", rtp_mem_refusal());
         if (rc == SPNG_EUSER_WIDTH || rc == SPNG_EUSER_HEIGHT)
             return fail(err, err_size, path, "PNG exceeds the %ux%u image limit", RTP_IMAGE_MAX_SIDE,
                         RTP_IMAGE_MAX_SIDE);
@@ -149,8 +129,10 @@ static bool ppm_decode(const char *path, const uint8_t *d, size_t n, rtp_image *
     if (!check_size(path, v[0], v[1], err, err_size)) return false;
     size_t want = (size_t)v[0] * v[1] * 3;
     if (n - pos < want) return fail(err, err_size, path, "truncated PPM: %zu of %zu pixel bytes", n - pos, want);
-    uint8_t *rgb = malloc(want);
-    if (!rgb) return fail(err, err_size, path, "out of memory");
+    char what[64];
+    snprintf(what, sizeof what, "the decoded image (%ux%u)", v[0], v[1]);
+    uint8_t *rgb = rtp_mem_alloc(want, what);
+    if (!rgb) return fail(err, err_size, path, "%s", rtp_mem_refusal());
     memcpy(rgb, d + pos, want);
     *out = (rtp_image){.width = v[0], .height = v[1], .rgb = rgb};
     return true;
@@ -158,18 +140,32 @@ static bool ppm_decode(const char *path, const uint8_t *d, size_t n, rtp_image *
 
 bool rtp_image_read(const char *path, rtp_image *out, char *err, size_t err_size)
 {
+    rtp_input in;
+    char why[256];
+    *out = (rtp_image){0};
+    if (!rtp_input_open(&in, path, false, why, sizeof why))
+        return fail(err, err_size, path, "%s%s", in.open_failed ? "cannot open: " : "", why);
+    return rtp_image_read_input(&in, out, err, err_size);
+}
+
+bool rtp_image_read_input(rtp_input *in, rtp_image *out, char *err, size_t err_size)
+{
     *out = (rtp_image){0};
     uint8_t *data = NULL;
     size_t size = 0;
-    if (!read_whole_file(path, &data, &size, err, err_size)) return false;
+    char why[256];
+    if (!rtp_input_read(in, RTP_IMAGE_MAX_FILE, "an image", &data, &size, why, sizeof why))
+        return fail(err, err_size, in->path, "%s", why);
     bool ok;
-    if (size >= sizeof png_signature && memcmp(data, png_signature, sizeof png_signature) == 0)
-        ok = png_decode(path, data, size, out, err, err_size);
+    if (size == 0)
+        ok = fail(err, err_size, in->path, "empty file");
+    else if (size >= sizeof png_signature && memcmp(data, png_signature, sizeof png_signature) == 0)
+        ok = png_decode(in->path, data, size, out, err, err_size);
     else if (size >= 2 && data[0] == 'P' && data[1] >= '1' && data[1] <= '7')
-        ok = ppm_decode(path, data, size, out, err, err_size);
+        ok = ppm_decode(in->path, data, size, out, err, err_size);
     else
-        ok = fail(err, err_size, path, "not a PNG or PPM file (unrecognised signature)");
-    free(data);
+        ok = fail(err, err_size, in->path, "not a PNG or PPM file (unrecognised signature)");
+    rtp_mem_free(data);
     return ok;
 }
 
@@ -184,7 +180,7 @@ static uint8_t *ppm_encode(const rtp_image *img, size_t rgb_size, size_t *size)
 {
     char header[48];
     int h = snprintf(header, sizeof header, "P6\n%u %u\n255\n", img->width, img->height);
-    uint8_t *buf = malloc((size_t)h + rgb_size);
+    uint8_t *buf = rtp_mem_alloc((size_t)h + rgb_size, "the encoded image");
     if (!buf) return NULL;
     memcpy(buf, header, (size_t)h);
     memcpy(buf + h, img->rgb, rgb_size);
@@ -192,10 +188,10 @@ static uint8_t *ppm_encode(const rtp_image *img, size_t rgb_size, size_t *size)
     return buf;
 }
 
-/* Returns the PNG (malloc'd by spng) or NULL with *rc set. */
+/* Returns the PNG (allocated by spng through rtp_mem) or NULL with *rc set. */
 static void *png_encode(const rtp_image *img, size_t rgb_size, size_t *size, int *rc)
 {
-    spng_ctx *ctx = spng_ctx_new(SPNG_CTX_ENCODER);
+    spng_ctx *ctx = codec_new(SPNG_CTX_ENCODER);
     if (!ctx) {
         *rc = SPNG_EMEM;
         return NULL;
@@ -220,7 +216,8 @@ static void *encode_png(const char *path, const rtp_image *img, size_t *size, ch
 {
     int rc;
     void *bytes = png_encode(img, (size_t)img->width * img->height * 3, size, &rc);
-    if (!bytes) fail(err, err_size, path, "cannot encode PNG: %s", spng_strerror(rc));
+    if (!bytes && rc == SPNG_EMEM) fail(err, err_size, path, "%s", rtp_mem_refusal());
+    if (!bytes && rc != SPNG_EMEM) fail(err, err_size, path, "cannot encode PNG: %s", spng_strerror(rc));
     return bytes;
 }
 
@@ -244,15 +241,15 @@ bool rtp_image_write(const char *path, const rtp_image *img, char *err, size_t e
     if (ends_with_png(path)) {
         if (!(bytes = encode_png(path, img, &size, err, err_size))) return false;
     } else if (!(bytes = ppm_encode(img, rgb_size, &size))) {
-        return fail(err, err_size, path, "out of memory");
+        return fail(err, err_size, path, "%s", rtp_mem_refusal());
     }
-    bool ok = rtp_file_write_atomic(path, bytes, size, err, err_size);
-    free(bytes);
+    bool ok = rtp_file_write(path, bytes, size, err, err_size);
+    rtp_mem_free(bytes);
     return ok;
 }
 
 void rtp_image_free(rtp_image *img)
 {
-    free(img->rgb);
+    rtp_mem_free(img->rgb);
     *img = (rtp_image){0};
 }

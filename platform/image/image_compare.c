@@ -2,7 +2,6 @@
 #include "image/image_compare.h"
 
 #include <math.h>
-#include <stdlib.h>
 #include <string.h>
 
 bool rtp_image_compare(const rtp_image *a, const rtp_image *b, rtp_image_metrics *m)
@@ -75,8 +74,7 @@ static void heat(unsigned d, uint8_t rgb[3])
 bool rtp_image_diff_map(const rtp_image *a, const rtp_image *b, rtp_image *out)
 {
     size_t pixels = (size_t)a->width * a->height;
-    *out = (rtp_image){.width = a->width, .height = a->height, .rgb = malloc(pixels * 3)};
-    if (!out->rgb) return false;
+    if (!rtp_image_alloc(out, a->width, a->height, "the difference map")) return false;
     for (size_t p = 0; p < pixels; p++) {
         unsigned most = 0;
         for (int c = 0; c < 3; c++) {

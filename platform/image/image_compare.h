@@ -22,7 +22,8 @@ typedef struct {
 bool rtp_image_compare(const rtp_image *a, const rtp_image *b, rtp_image_metrics *m);
 
 /* Heat map of each pixel's largest channel difference (black = identical; ramp in image_compare.c)
- * for two images of the same size; out->rgb is malloc'd. False when out of memory. */
+ * for two images of the same size (released with rtp_image_free). False when it does not fit
+ * in memory (rtp_mem_refusal() says so). */
 bool rtp_image_diff_map(const rtp_image *a, const rtp_image *b, rtp_image *out);
 
 #endif

@@ -3,14 +3,10 @@
 #include "load/ply_reader.h"
 #include "load/ply_weld.h"
 
-#include <errno.h>
-#include <fcntl.h>
+#include "mem/mem.h"
 #include <stdarg.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 /* Refused before reading: no mesh the tracer can hold comes close. */
 #define PLY_MAX_FILE (1u << 30)
@@ -34,46 +30,6 @@ static bool fail_file(const char *path, char *err, size_t err_size, const char *
 {
     if (err_size > 0) snprintf(err, err_size, "%s: %s", path, why);
     return false;
-}
-
-static bool read_whole_file(const char *path, uint8_t **data, size_t *size, char *err, size_t err_size)
-{
-    int fd = open(path, O_RDONLY | O_CLOEXEC);
-    if (fd < 0) {
-        char why[160];
-        snprintf(why, sizeof why, "cannot open: %s", strerror(errno));
-        return fail_file(path, err, err_size, why);
-    }
-    struct stat st;
-    const char *why = NULL;
-    if (fstat(fd, &st) != 0)
-        why = "cannot read the file's size";
-    else if (S_ISDIR(st.st_mode))
-        why = "is a directory";
-    else if (!S_ISREG(st.st_mode))
-        why = "not a regular file";
-    else if (st.st_size > (off_t)PLY_MAX_FILE)
-        why = "file too large for a mesh (over 1 GiB)";
-    /* One spare byte so an empty file still gets a buffer. */
-    uint8_t *buf = why ? NULL : malloc((size_t)st.st_size + 1);
-    if (!why && !buf) why = "out of memory";
-    size_t got = 0;
-    while (!why && got < (size_t)st.st_size) {
-        ssize_t n = read(fd, buf + got, (size_t)st.st_size - got);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0)
-            why = n < 0 ? strerror(errno) : "file shrank while reading";
-        else
-            got += (size_t)n;
-    }
-    close(fd);
-    if (why) {
-        free(buf);
-        return fail_file(path, err, err_size, why);
-    }
-    *data = buf;
-    *size = got;
-    return true;
 }
 
 /* ---- header ---- */
@@ -305,17 +261,17 @@ static bool allocate_mesh(ply_reader *r)
     m->vertex_count = (uint32_t)vertex->count;
     size_t v = m->vertex_count ? m->vertex_count : 1;
     r->triangle_capacity = face->count ? (size_t)face->count : 1;
-    m->positions = malloc(v * sizeof *m->positions);
+    m->positions = rtp_mem_alloc(v * sizeof *m->positions, "the mesh's vertices");
     bool normals = r->has[PLY_NX] && r->has[PLY_NY] && r->has[PLY_NZ];
     bool uvs = r->has[PLY_U] && r->has[PLY_V];
     /* A partial normal or uv set (nx without nz, u without v) is ignored. */
     r->has[PLY_NX] = r->has[PLY_NY] = r->has[PLY_NZ] = normals;
     r->has[PLY_U] = r->has[PLY_V] = uvs;
-    if (normals) m->normals = malloc(v * sizeof *m->normals);
-    if (uvs) m->uvs = malloc(v * sizeof *m->uvs);
-    m->indices = malloc(r->triangle_capacity * 3 * sizeof *m->indices);
+    if (normals) m->normals = rtp_mem_alloc(v * sizeof *m->normals, "the mesh's normals");
+    if (uvs) m->uvs = rtp_mem_alloc(v * sizeof *m->uvs, "the mesh's texture coordinates");
+    m->indices = rtp_mem_alloc(r->triangle_capacity * 3 * sizeof *m->indices, "the mesh's triangles");
     if (!m->positions || (normals && !m->normals) || (uvs && !m->uvs) || !m->indices)
-        return ply_fail(r, "out of memory for %u vertices", m->vertex_count);
+        return ply_fail(r, "%s", rtp_mem_refusal());
     return true;
 }
 
@@ -336,15 +292,29 @@ static void drop_degenerate(rtp_ply_mesh *m)
 
 bool rtp_ply_read(const char *path, rtp_ply_mesh *out, char *err, size_t err_size)
 {
+    rtp_input in;
+    char why[512];
+    memset(out, 0, sizeof *out);
+    if (!rtp_input_open(&in, path, false, why, sizeof why)) {
+        snprintf(err, err_size, "%s: %s%s", path, in.open_failed ? "cannot open: " : "", why);
+        return false;
+    }
+    return rtp_ply_read_input(&in, out, err, err_size);
+}
+
+bool rtp_ply_read_input(rtp_input *in, rtp_ply_mesh *out, char *err, size_t err_size)
+{
     memset(out, 0, sizeof *out);
     if (err_size > 0) err[0] = 0;
     uint8_t *data;
     size_t size;
-    if (!read_whole_file(path, &data, &size, err, err_size)) return false;
-    ply_reader r = {.path = path, .err = err, .err_size = err_size, .data = data, .size = size, .mesh = out};
+    char why[512];
+    if (!rtp_input_read(in, PLY_MAX_FILE, "a mesh", &data, &size, why, sizeof why))
+        return fail_file(in->path, err, err_size, why);
+    ply_reader r = {.path = in->path, .err = err, .err_size = err_size, .data = data, .size = size, .mesh = out};
     bool ok = parse_header(&r) && allocate_mesh(&r) && ply_read_body(&r);
-    free(data);
-    if (ok && !rtp_ply_weld(out)) ok = fail_file(path, err, err_size, "out of memory joining identical vertices");
+    rtp_mem_free(data);
+    if (ok && !rtp_ply_weld(out)) ok = fail_file(in->path, err, err_size, rtp_mem_refusal());
     if (!ok) {
         rtp_ply_free(out);
         return false;
@@ -355,10 +325,10 @@ bool rtp_ply_read(const char *path, rtp_ply_mesh *out, char *err, size_t err_siz
 
 void rtp_ply_free(rtp_ply_mesh *mesh)
 {
-    free(mesh->positions);
-    free(mesh->normals);
-    free(mesh->uvs);
-    free(mesh->indices);
+    rtp_mem_free(mesh->positions);
+    rtp_mem_free(mesh->normals);
+    rtp_mem_free(mesh->uvs);
+    rtp_mem_free(mesh->indices);
     memset(mesh, 0, sizeof *mesh);
 }
 

@@ -2,10 +2,11 @@
 #ifndef RTP_PLY_H
 #define RTP_PLY_H
 
+#include "load/input_file.h"
 #include "scene.h"
 #include <stddef.h>
 
-/* A mesh as read from a file; all arrays are malloc'd and released by rtp_ply_free.
+/* A mesh as read from a file; all arrays are rtp_mem's, released by rtp_ply_free.
  * normals and uvs are NULL when the file has none. Polygons are fan-triangulated and
  * degenerate triangles (repeated index or zero area) are dropped. */
 typedef struct {
@@ -21,6 +22,8 @@ typedef struct {
  * "<path>: <place>: <what was wrong>", place being "line N" (header/ASCII) or
  * "byte N" (binary). */
 bool rtp_ply_read(const char *path, rtp_ply_mesh *out, char *err, size_t err_size);
+/* The same for a file already opened with rtp_input_open, which this reads and closes. */
+bool rtp_ply_read_input(rtp_input *in, rtp_ply_mesh *out, char *err, size_t err_size);
 void rtp_ply_free(rtp_ply_mesh *mesh);
 /* A borrowed view for rt_scene_desc. */
 rt_mesh_desc rtp_ply_view(const rtp_ply_mesh *mesh);

@@ -2,6 +2,7 @@
  * line) or as little/big-endian binary, and fed to the mesh by their role. */
 #include "load/ply_reader.h"
 
+#include "mem/mem.h"
 #include <errno.h>
 #include <float.h>
 #include <math.h>
@@ -138,8 +139,8 @@ static bool add_triangle(ply_reader *r, uint32_t a, uint32_t b, uint32_t c)
         /* Indices are uint32 downstream: 3 * count must fit. */
         if (r->triangle_capacity >= UINT32_MAX / 3) return fail_place(r, "too many triangles");
         size_t cap = r->triangle_capacity * 2 < UINT32_MAX / 3 ? r->triangle_capacity * 2 : UINT32_MAX / 3;
-        uint32_t *grown = realloc(m->indices, cap * 3 * sizeof *grown);
-        if (!grown) return fail_place(r, "out of memory for triangles");
+        uint32_t *grown = rtp_mem_realloc(m->indices, cap * 3 * sizeof *grown, "the mesh's triangles");
+        if (!grown) return fail_place(r, rtp_mem_refusal());
         m->indices = grown;
         r->triangle_capacity = cap;
     }

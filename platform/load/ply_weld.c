@@ -4,7 +4,7 @@
  * index (format §7.4) and needs that; rendering at level 0 is unchanged. */
 #include "load/ply_weld.h"
 
-#include <stdlib.h>
+#include "mem/mem.h"
 #include <string.h>
 
 /* The attributes that must all be equal, bit for bit, for two vertices to merge. */
@@ -36,14 +36,15 @@ bool rtp_ply_weld(rtp_ply_mesh *m)
 {
     size_t slots = 1;
     while (slots < (size_t)m->vertex_count * 2) slots <<= 1;
-    uint32_t *table = malloc(slots * sizeof *table); /* new vertex index + 1, 0 = empty */
-    uint32_t *remap = malloc((m->vertex_count ? m->vertex_count : 1) * sizeof *remap);
-    if (!table || !remap) {
-        free(table);
-        free(remap);
+    /* new vertex index + 1, 0 = empty */
+    uint32_t *table = rtp_mem_calloc(slots, sizeof *table, "the vertex welding table");
+    uint32_t *remap =
+        table ? rtp_mem_alloc((m->vertex_count ? m->vertex_count : 1) * sizeof *remap, "the vertex welding table")
+              : NULL;
+    if (!remap) {
+        rtp_mem_free(table);
         return false;
     }
-    memset(table, 0, slots * sizeof *table);
     uint32_t kept = 0;
     for (uint32_t v = 0; v < m->vertex_count; v++) {
         vertex_key k = key_of(m, v);
@@ -63,7 +64,7 @@ bool rtp_ply_weld(rtp_ply_mesh *m)
     }
     for (uint64_t i = 0; i < (uint64_t)m->triangle_count * 3; i++) m->indices[i] = remap[m->indices[i]];
     m->vertex_count = kept;
-    free(table);
-    free(remap);
+    rtp_mem_free(table);
+    rtp_mem_free(remap);
     return true;
 }

@@ -14,8 +14,11 @@
 
 #include "builtin_mesh.h"
 #include "image/image.h"
+#include "load/input_file.h"
+#include "load/name_index.h"
 #include "load/ply.h"
 #include "load/yaml_read.h"
+#include "mem/mem.h"
 
 #define UNSET UINT32_MAX /* an index not assigned yet; as a material: not traced */
 #define MAX_IMAGE_SIDE 16384
@@ -38,19 +41,26 @@ typedef struct {
     list lights;    /* rt_light_desc */
 } store;
 
-/* The named entries of the file's sections. Each struct begins with its name (see find). */
+/* The identity of an asset file: two entries naming one file (by any path) share a read. */
+typedef struct {
+    dev_t dev;
+    ino_t ino;
+} file_id;
+
+/* The named entries of the file's sections, found by name through the loader's indices. */
 typedef struct {
     const char *name;
-    const yaml_node_t *node;
-    uint32_t index; /* into desc.textures once a traced material uses it */
+    const rtp_yaml_node *key, *node; /* node is NULL for an empty (null) entry */
+    uint32_t index;                  /* into desc.textures once a traced material uses it */
     bool bilinear;
+    file_id file; /* once read */
 } texture_decl;
 
 typedef struct {
     const char *name;
-    const yaml_node_t *node;
+    const rtp_yaml_node *key, *node;
     uint32_t index; /* into desc.meshes once traced geometry uses it */
-    char *resolved; /* the file's path once read */
+    file_id file;   /* once read */
 } mesh_decl;
 
 typedef struct {
@@ -70,7 +80,9 @@ typedef struct {
     list names;                                /* char *, the Name of each enabled node: rtp_loaded_scene.node_names */
     list material_names, texture_names;        /* char *, by desc index */
     list textures, meshes, shaders, materials; /* the *_decl of the sections */
-    uint32_t cube, square;                     /* desc.meshes index of the built-ins once used */
+    rtp_name_index texture_names_ix, mesh_names_ix, shader_names_ix, material_names_ix; /* name -> decl */
+    rtp_name_index texture_files, mesh_files; /* file_id -> the decl that read it */
+    uint32_t cube, square;                    /* desc.meshes index of the built-ins once used */
     bool have_camera;
     rt_camera_desc camera;
 } loader;
@@ -80,9 +92,9 @@ static void *push(loader *L, list *l, size_t size)
 {
     if (l->count == l->cap) {
         uint32_t cap = l->cap ? l->cap * 2 : 8;
-        void *data = realloc(l->data, (size_t)cap * size);
+        void *data = rtp_mem_realloc(l->data, (size_t)cap * size, "the scene description");
         if (!data) {
-            rtp_yaml_fail(&L->y, NULL, NULL, "out of memory");
+            rtp_yaml_fail(&L->y, NULL, NULL, "%s", rtp_mem_refusal());
             return NULL;
         }
         l->data = data;
@@ -97,26 +109,31 @@ static void *push(loader *L, list *l, size_t size)
 static bool push_name(loader *L, list *l, const char *name)
 {
     char **slot = push(L, l, sizeof *slot);
-    return slot && ((*slot = strdup(name)) || rtp_yaml_fail(&L->y, NULL, NULL, "out of memory"));
+    return slot && ((*slot = rtp_mem_strdup(name, "the scene's names")) ||
+                    rtp_yaml_fail(&L->y, NULL, NULL, "%s", rtp_mem_refusal()));
 }
 
-/* The entry called name in a list of *_decl, or NULL. */
-static void *find(const list *l, size_t size, const char *name)
+/* Records that entry `index` of a section is called name. */
+static bool index_name(loader *L, rtp_name_index *ix, const char *name, uint32_t index)
 {
-    for (uint32_t i = 0; i < l->count; i++) {
-        char *item = (char *)l->data + (size_t)i * size;
-        if (!strcmp(*(const char **)item, name)) return item;
-    }
-    return NULL;
+    return rtp_name_index_put(ix, name, strlen(name), index) ||
+           rtp_yaml_fail(&L->y, NULL, NULL, "%s", rtp_mem_refusal());
+}
+
+/* The entry called name in a list of *_decl through its index, or NULL. */
+static void *find(const list *l, const rtp_name_index *ix, size_t size, const char *name)
+{
+    uint32_t i = rtp_name_index_get(ix, name, strlen(name));
+    return i == RTP_NAME_NONE ? NULL : (char *)l->data + (size_t)i * size;
 }
 
 /* ---- Values ---- */
 
 /* Three numbers of the map under key, named by the letters of axes ("RGB", "XYZ"). */
-static bool read_triple(rtp_yaml *y, const yaml_node_t *map, const char *key, const char *axes, double def,
+static bool read_triple(rtp_yaml *y, const rtp_yaml_node *map, const char *key, const char *axes, double def,
                         double out[3])
 {
-    yaml_node_t *m;
+    rtp_yaml_node *m;
     if (!rtp_yaml_map(y, map, key, false, &m)) return false;
     size_t mark = rtp_yaml_push(y, key);
     for (int i = 0; i < 3; i++) {
@@ -143,21 +160,22 @@ static rt_real quantise(double c)
 
 /* ---- Resource sections ---- */
 
-typedef bool (*entry_fn)(loader *L, const char *name, const yaml_node_t *entry);
+typedef bool (*entry_fn)(loader *L, const rtp_yaml_node *key, const rtp_yaml_node *entry);
 
 /* Calls fn for every "name: {map}" entry of the top-level section. */
-static bool for_each_entry(loader *L, const yaml_node_t *top, const char *section, entry_fn fn)
+static bool for_each_entry(loader *L, const rtp_yaml_node *top, const char *section, entry_fn fn)
 {
     rtp_yaml *y = &L->y;
-    yaml_node_t *map;
+    rtp_yaml_node *map;
     if (!rtp_yaml_map(y, top, section, false, &map)) return false;
     size_t mark = rtp_yaml_push(y, section);
     for (size_t i = 0; i < rtp_yaml_count(map); i++) {
-        yaml_node_t *entry;
-        const char *name = rtp_yaml_text(rtp_yaml_pair(y, map, i, &entry));
+        rtp_yaml_node *entry;
+        const rtp_yaml_node *key = rtp_yaml_pair(y, map, i, &entry);
+        const char *name = rtp_yaml_text(key);
         if (!name) continue; /* a non-scalar key cannot be referred to */
         size_t entry_mark = rtp_yaml_push(y, name);
-        if (!rtp_yaml_want_map(y, entry, NULL) || !fn(L, name, entry)) return false;
+        if (!rtp_yaml_want_map(y, entry, NULL) || !fn(L, key, entry)) return false;
         rtp_yaml_pop(y, entry_mark);
     }
     rtp_yaml_pop(y, mark);
@@ -165,23 +183,25 @@ static bool for_each_entry(loader *L, const yaml_node_t *top, const char *sectio
 }
 
 /* Path is type-checked here and read when a traced material uses the texture. */
-static bool texture_entry(loader *L, const char *name, const yaml_node_t *entry)
+static bool texture_entry(loader *L, const rtp_yaml_node *key, const rtp_yaml_node *entry)
 {
     const char *path;
     texture_decl *t = push(L, &L->textures, sizeof *t);
     if (!t) return false;
-    *t = (texture_decl){.name = name, .node = entry, .index = UNSET};
+    *t = (texture_decl){.name = key->text, .key = key, .node = entry, .index = UNSET};
     return rtp_yaml_bool(&L->y, entry, "Bilinear", true, &t->bilinear) &&
-           rtp_yaml_string(&L->y, entry, "Path", "", &path);
+           rtp_yaml_string(&L->y, entry, "Path", "", &path) &&
+           index_name(L, &L->texture_names_ix, key->text, L->textures.count - 1);
 }
 
-static bool mesh_entry(loader *L, const char *name, const yaml_node_t *entry)
+static bool mesh_entry(loader *L, const rtp_yaml_node *key, const rtp_yaml_node *entry)
 {
     const char *path;
     mesh_decl *m = push(L, &L->meshes, sizeof *m);
     if (!m) return false;
-    *m = (mesh_decl){.name = name, .node = entry, .index = UNSET};
-    return rtp_yaml_string(&L->y, entry, "Path", "", &path);
+    *m = (mesh_decl){.name = key->text, .key = key, .node = entry, .index = UNSET};
+    return rtp_yaml_string(&L->y, entry, "Path", "", &path) &&
+           index_name(L, &L->mesh_names_ix, key->text, L->meshes.count - 1);
 }
 
 /* Undefined shader programs are not traced, except these two built-ins (format §3.4). */
@@ -190,19 +210,20 @@ static bool builtin_traced(const char *shader)
     return !strcmp(shader, "Blinn-Phong Shader") || !strcmp(shader, "Toon Shader");
 }
 
-static bool shader_entry(loader *L, const char *name, const yaml_node_t *entry)
+static bool shader_entry(loader *L, const rtp_yaml_node *key, const rtp_yaml_node *entry)
 {
     shader_decl *s = push(L, &L->shaders, sizeof *s);
     if (!s) return false;
-    s->name = name;
-    return rtp_yaml_bool(&L->y, entry, "Trace Compatible", builtin_traced(name), &s->traced);
+    s->name = key->text;
+    return rtp_yaml_bool(&L->y, entry, "Trace Compatible", builtin_traced(key->text), &s->traced) &&
+           index_name(L, &L->shader_names_ix, key->text, L->shaders.count - 1);
 }
 
 /* A colour channel (format §6.2): a quantised solid colour, or a texture replacing it. */
-static bool load_channel(loader *L, const yaml_node_t *uniforms, const char *key, double def, rt_channel *out)
+static bool load_channel(loader *L, const rtp_yaml_node *uniforms, const char *key, double def, rt_channel *out)
 {
     rtp_yaml *y = &L->y;
-    yaml_node_t *channel;
+    rtp_yaml_node *channel;
     double rgb[3];
     bool use_texture;
     const char *map_name;
@@ -215,7 +236,7 @@ static bool load_channel(loader *L, const yaml_node_t *uniforms, const char *key
     out->color = rt_v3(quantise(rgb[0]), quantise(rgb[1]), quantise(rgb[2]));
     out->texture = RT_NO_TEXTURE;
     if (use_texture && *map_name) {
-        texture_decl *t = find(&L->textures, sizeof *t, map_name);
+        texture_decl *t = find(&L->textures, &L->texture_names_ix, sizeof *t, map_name);
         if (!t)
             return rtp_yaml_fail(y, rtp_yaml_get(y, channel, "Color Map"), "Color Map",
                                  "no texture named '%s' in Textures", map_name);
@@ -230,15 +251,17 @@ static bool load_channel(loader *L, const yaml_node_t *uniforms, const char *key
     return true;
 }
 
-static bool material_entry(loader *L, const char *name, const yaml_node_t *entry)
+static bool material_entry(loader *L, const rtp_yaml_node *key, const rtp_yaml_node *entry)
 {
     rtp_yaml *y = &L->y;
-    const char *shader;
-    yaml_node_t *u;
+    const char *shader, *name = key->text;
+    rtp_yaml_node *u;
     double shininess, ior;
     material_decl *d = push(L, &L->materials, sizeof *d);
-    if (!d || !rtp_yaml_string(y, entry, "Shader", "", &shader)) return false;
-    const shader_decl *s = find(&L->shaders, sizeof *s, shader);
+    if (!d || !rtp_yaml_string(y, entry, "Shader", "", &shader) ||
+        !index_name(L, &L->material_names_ix, name, L->materials.count - 1))
+        return false;
+    const shader_decl *s = find(&L->shaders, &L->shader_names_ix, sizeof *s, shader);
     *d = (material_decl){.name = name, .index = UNSET};
     if (!(s ? s->traced : builtin_traced(shader))) return true;
 
@@ -262,10 +285,10 @@ static bool material_entry(loader *L, const char *name, const yaml_node_t *entry
 /* ---- Components ---- */
 
 /* Camera settings (format §5.1); a NULL map gives the skeleton's defaults. */
-static bool read_camera(rtp_yaml *y, const yaml_node_t *c, const rt_affine *world, rt_camera_desc *cam)
+static bool read_camera(rtp_yaml *y, const rtp_yaml_node *c, const rt_affine *world, rt_camera_desc *cam)
 {
     rt_trace_settings *s = &cam->trace;
-    yaml_node_t *t;
+    rtp_yaml_node *t;
     double fov, ortho, focus, aperture, difference, std_error;
     memset(cam, 0, sizeof *cam);
     cam->world = *world;
@@ -306,7 +329,7 @@ static bool read_camera(rtp_yaml *y, const yaml_node_t *c, const rt_affine *worl
 }
 
 /* Every camera is checked; the first enabled one in depth-first order is used. */
-static bool load_camera(loader *L, const yaml_node_t *c, const rt_affine *world)
+static bool load_camera(loader *L, const rtp_yaml_node *c, const rt_affine *world)
 {
     rt_camera_desc cam;
     if (!read_camera(&L->y, c, world, &cam)) return false;
@@ -316,7 +339,7 @@ static bool load_camera(loader *L, const yaml_node_t *c, const rt_affine *world)
 }
 
 /* Lights (format §5.2). Their colours are used as written, not quantised. */
-static bool load_light(loader *L, const yaml_node_t *c, rt_light_kind kind, const rt_affine *world)
+static bool load_light(loader *L, const rtp_yaml_node *c, rt_light_kind kind, const rt_affine *world)
 {
     rtp_yaml *y = &L->y;
     double color[3], ambient[3], multiplier = 1.0, atten[3] = {0.0, 0.0, 0.0};
@@ -351,11 +374,11 @@ static bool load_light(loader *L, const yaml_node_t *c, rt_light_kind kind, cons
 
 /* The desc index of the component's material, or UNSET when the tracer does not see
  * it: not trace compatible, or not defined (the skeleton's fallback is not traced). */
-static bool component_material(loader *L, const yaml_node_t *c, uint32_t *material)
+static bool component_material(loader *L, const rtp_yaml_node *c, uint32_t *material)
 {
     const char *name;
     if (!rtp_yaml_string(&L->y, c, "Material", "", &name)) return false;
-    const material_decl *m = find(&L->materials, sizeof *m, name);
+    const material_decl *m = find(&L->materials, &L->material_names_ix, sizeof *m, name);
     *material = m ? m->index : UNSET;
     return true;
 }
@@ -381,7 +404,7 @@ static bool builtin_mesh(loader *L, rt_mesh_desc mesh, uint32_t *index, uint32_t
     return true;
 }
 
-static bool load_quadric(loader *L, const yaml_node_t *c, rt_shape_kind kind, const rt_affine *world, uint32_t source)
+static bool load_quadric(loader *L, const rtp_yaml_node *c, rt_shape_kind kind, const rt_affine *world, uint32_t source)
 {
     uint32_t material;
     if (!component_material(L, c, &material)) return false;
@@ -389,7 +412,7 @@ static bool load_quadric(loader *L, const yaml_node_t *c, rt_shape_kind kind, co
 }
 
 /* A Plane is the built-in unit square, traced as a mesh (format §5.5). */
-static bool load_plane(loader *L, const yaml_node_t *c, const rt_affine *world, uint32_t source)
+static bool load_plane(loader *L, const rtp_yaml_node *c, const rt_affine *world, uint32_t source)
 {
     uint32_t material;
     rt_object_desc *o;
@@ -399,7 +422,7 @@ static bool load_plane(loader *L, const yaml_node_t *c, const rt_affine *world, 
            builtin_mesh(L, rt_builtin_mesh_square(), &L->square, &o->mesh);
 }
 
-static bool load_triangle_mesh(loader *L, const yaml_node_t *c, const rt_affine *world, uint32_t source)
+static bool load_triangle_mesh(loader *L, const rtp_yaml_node *c, const rt_affine *world, uint32_t source)
 {
     rtp_yaml *y = &L->y;
     uint32_t material, subdivision;
@@ -412,7 +435,7 @@ static bool load_triangle_mesh(loader *L, const yaml_node_t *c, const rt_affine 
     if (!rtp_yaml_string(y, c, "Mesh", NULL, &name) || !(o = add_object(L, RT_SHAPE_MESH, world, material, source)))
         return false;
     o->subdivision = subdivision;
-    mesh_decl *m = find(&L->meshes, sizeof *m, name);
+    mesh_decl *m = find(&L->meshes, &L->mesh_names_ix, sizeof *m, name);
     if (m) {
         if (m->index == UNSET) {
             if (!push(L, &L->st->meshes, sizeof(rt_mesh_desc))) return false;
@@ -426,7 +449,7 @@ static bool load_triangle_mesh(loader *L, const yaml_node_t *c, const rt_affine 
                          name);
 }
 
-static bool load_component(loader *L, const yaml_node_t *key, const yaml_node_t *c, const rt_affine *world,
+static bool load_component(loader *L, const rtp_yaml_node *key, const rtp_yaml_node *c, const rt_affine *world,
                            uint32_t source)
 {
     rtp_yaml *y = &L->y;
@@ -469,9 +492,9 @@ static bool affine_is_finite(const rt_affine *a)
 }
 
 /* parent * T * R * S of the node's Transform component (format §4.2). */
-static bool node_transform(rtp_yaml *y, const yaml_node_t *components, const rt_affine *parent, rt_affine *world)
+static bool node_transform(rtp_yaml *y, const rtp_yaml_node *components, const rt_affine *parent, rt_affine *world)
 {
-    yaml_node_t *t;
+    rtp_yaml_node *t;
     double translation[3], rotation[3], scale[3];
     if (!rtp_yaml_map(y, components, "Transform", false, &t)) return false;
     size_t mark = rtp_yaml_push(y, "Transform");
@@ -487,12 +510,12 @@ static bool node_transform(rtp_yaml *y, const yaml_node_t *components, const rt_
 }
 
 /* Adds node and its subtree unless it is disabled (format §4). */
-static bool load_node(loader *L, const yaml_node_t *node, const rt_affine *parent, unsigned depth)
+static bool load_node(loader *L, const rtp_yaml_node *node, const rt_affine *parent, unsigned depth)
 {
     rtp_yaml *y = &L->y;
     const char *name;
     bool enabled;
-    yaml_node_t *components, *children;
+    rtp_yaml_node *components, *children;
     rt_affine world;
     if (depth > MAX_NODE_DEPTH) return rtp_yaml_fail(y, node, NULL, "nodes nested more than %d deep", MAX_NODE_DEPTH);
     if (!rtp_yaml_want_map(y, node, NULL) || !rtp_yaml_string(y, node, "Name", NULL, &name) ||
@@ -500,8 +523,7 @@ static bool load_node(loader *L, const yaml_node_t *node, const rt_affine *paren
         return false;
     if (!enabled) return true;
 
-    char **slot = push(L, &L->names, sizeof *slot);
-    if (!slot || !(*slot = strdup(name))) return rtp_yaml_fail(y, NULL, NULL, "out of memory");
+    if (!push_name(L, &L->names, name)) return false;
     uint32_t source = L->names.count - 1;
     if (!rtp_yaml_map(y, node, "Components", false, &components) ||
         !rtp_yaml_seq(y, node, "Children", false, &children))
@@ -509,8 +531,8 @@ static bool load_node(loader *L, const yaml_node_t *node, const rt_affine *paren
     size_t mark = rtp_yaml_push(y, "Components");
     if (!node_transform(y, components, parent, &world)) return false;
     for (size_t i = 0; i < rtp_yaml_count(components); i++) {
-        yaml_node_t *c;
-        const yaml_node_t *key = rtp_yaml_pair(y, components, i, &c);
+        rtp_yaml_node *c;
+        const rtp_yaml_node *key = rtp_yaml_pair(y, components, i, &c);
         if (!load_component(L, key, c, &world, source)) return false;
     }
     rtp_yaml_pop(y, mark);
@@ -527,10 +549,10 @@ static bool load_node(loader *L, const yaml_node_t *node, const rt_affine *paren
 static bool load_sections(loader *L)
 {
     rtp_yaml *y = &L->y;
-    const yaml_node_t *top = rtp_yaml_root(y);
-    yaml_node_t *root;
+    const rtp_yaml_node *top = rtp_yaml_root(y);
+    rtp_yaml_node *root;
     rt_affine identity = rt_affine_identity();
-    if (top->type != YAML_MAPPING_NODE) return rtp_yaml_expected(y, top, NULL, "a scene (a YAML map)");
+    if (top->kind != RTP_YAML_MAP) return rtp_yaml_expected(y, top, NULL, "a scene (a YAML map)");
     /* Cubemaps are never sampled by the tracer (format §3.2). */
     if (!for_each_entry(L, top, "Textures", texture_entry) || !for_each_entry(L, top, "Meshes", mesh_entry) ||
         !for_each_entry(L, top, "ShaderPrograms", shader_entry) ||
@@ -550,11 +572,12 @@ static bool load_sections(loader *L)
 /* ---- Asset files ---- */
 
 /* The folder asset paths are relative to (format §2): the parent of the nearest
- * ancestor of the scene's folder named "assets", else the scene's folder. */
+ * ancestor of the scene's folder named "assets", else the scene's folder; for a scene
+ * read from standard input, the working folder. */
 static bool find_root(loader *L, const char *scene_path, const char *assets_root)
 {
-    if (assets_root) {
-        L->root = strdup(assets_root);
+    if (assets_root || !strcmp(scene_path, "-")) {
+        L->root = strdup(assets_root ? assets_root : ".");
         return L->root || rtp_yaml_fail(&L->y, NULL, NULL, "out of memory");
     }
     char *dir = realpath(scene_path, NULL);
@@ -574,36 +597,64 @@ static bool find_root(loader *L, const char *scene_path, const char *assets_root
     return true;
 }
 
-/* Reads Path of a Textures or Meshes entry, resolves it and checks the file can be
- * opened, so a missing file is reported against the key that named it. */
-static bool asset_path(loader *L, const yaml_node_t *entry, char **resolved)
+/* Opens the file Path of a Textures or Meshes entry names (relative to the assets
+ * root), so that a missing or unusable file is reported against the key that named it. */
+static bool open_asset(loader *L, const rtp_yaml_node *key, const rtp_yaml_node *entry, rtp_input *in)
 {
     rtp_yaml *y = &L->y;
     const char *path;
+    char *resolved, why[RTP_ERR_SIZE];
+    /* An empty (null) entry has no place of its own: its key is the place. */
+    if (!entry) return rtp_yaml_fail(y, key, "Path", "missing, expected a string");
     if (!rtp_yaml_string(y, entry, "Path", NULL, &path)) return false;
     const char *sep = *L->root && L->root[strlen(L->root) - 1] == '/' ? "" : "/";
     size_t size = strlen(L->root) + strlen(path) + 2;
-    if (!(*resolved = malloc(size))) return rtp_yaml_fail(y, NULL, NULL, "out of memory");
+    if (!(resolved = rtp_mem_alloc(size, "the scene description")))
+        return rtp_yaml_fail(y, NULL, NULL, "%s", rtp_mem_refusal());
     if (path[0] == '/')
-        snprintf(*resolved, size, "%s", path);
+        snprintf(resolved, size, "%s", path);
     else
-        snprintf(*resolved, size, "%s%s%s", L->root, sep, path);
-    FILE *f = fopen(*resolved, "rb");
-    if (!f)
-        return rtp_yaml_fail(y, rtp_yaml_get(y, entry, "Path"), "Path", "cannot read '%s': %s", *resolved,
-                             strerror(errno));
-    fclose(f);
-    return true;
+        snprintf(resolved, size, "%s%s%s", L->root, sep, path);
+    bool ok = rtp_input_open(in, resolved, false, why, sizeof why) ||
+              rtp_yaml_fail(y, rtp_yaml_get(y, entry, "Path"), "Path", "cannot read '%s': %s", resolved, why);
+    if (!ok) rtp_mem_free(resolved);
+    return ok;
 }
 
+/* The earlier entry of decls (by index) that read the file in opened, recorded
+ * otherwise; RTP_NAME_NONE when this entry is the first to read it. */
+static bool first_reader(loader *L, rtp_name_index *files, file_id *id, const rtp_input *in, uint32_t self,
+                         uint32_t *first)
+{
+    *id = (file_id){in->dev, in->ino};
+    *first = rtp_name_index_get(files, id, sizeof *id);
+    return *first != RTP_NAME_NONE || rtp_name_index_put(files, id, sizeof *id, self) ||
+           rtp_yaml_fail(&L->y, NULL, NULL, "%s", rtp_mem_refusal());
+}
+
+/* Textures entries naming one file share one read and one image. */
 static bool load_texture(loader *L, texture_decl *t)
 {
-    char *path = NULL, why[RTP_ERR_SIZE];
+    rt_texture *textures = L->st->textures.data;
+    char why[RTP_ERR_SIZE];
+    rtp_input in;
     rtp_image img;
-    bool ok = asset_path(L, t->node, &path);
-    if (ok && !rtp_image_read(path, &img, why, sizeof why))
+    uint32_t first;
+    if (!open_asset(L, t->key, t->node, &in)) return false;
+    const char *path = in.path;
+    bool ok =
+        first_reader(L, &L->texture_files, &t->file, &in, (uint32_t)(t - (texture_decl *)L->textures.data), &first);
+    if (ok && first != RTP_NAME_NONE) {
+        rtp_input_close(&in);
+        textures[t->index] = textures[((texture_decl *)L->textures.data)[first].index];
+        textures[t->index].bilinear = t->bilinear;
+        rtp_mem_free((char *)path);
+        return true;
+    }
+    if (ok && !rtp_image_read_input(&in, &img, why, sizeof why))
         ok = rtp_yaml_fail(&L->y, rtp_yaml_get(&L->y, t->node, "Path"), "Path", "%s", why);
-    free(path);
+    rtp_input_close(&in);
+    rtp_mem_free((char *)path);
     if (!ok) return false;
     rtp_image *owned = push(L, &L->st->images, sizeof *owned);
     if (!owned) {
@@ -611,26 +662,33 @@ static bool load_texture(loader *L, texture_decl *t)
         return false;
     }
     *owned = img;
-    ((rt_texture *)L->st->textures.data)[t->index] =
+    textures[t->index] =
         (rt_texture){.width = img.width, .height = img.height, .rgb = img.rgb, .bilinear = t->bilinear};
     return true;
 }
 
-/* Two Meshes entries naming the same file share one read. */
+/* Meshes entries naming one file share one read. */
 static bool load_mesh(loader *L, mesh_decl *m)
 {
     rt_mesh_desc *meshes = L->st->meshes.data;
     char why[RTP_ERR_SIZE];
+    rtp_input in;
     rtp_ply_mesh ply;
-    if (!asset_path(L, m->node, &m->resolved)) return false;
-    for (const mesh_decl *other = L->meshes.data; other < m; other++) {
-        if (other->resolved && !strcmp(other->resolved, m->resolved)) {
-            meshes[m->index] = meshes[other->index];
-            return true;
-        }
+    uint32_t first;
+    if (!open_asset(L, m->key, m->node, &in)) return false;
+    const char *path = in.path;
+    bool ok = first_reader(L, &L->mesh_files, &m->file, &in, (uint32_t)(m - (mesh_decl *)L->meshes.data), &first);
+    if (ok && first != RTP_NAME_NONE) {
+        rtp_input_close(&in);
+        meshes[m->index] = meshes[((mesh_decl *)L->meshes.data)[first].index];
+        rtp_mem_free((char *)path);
+        return true;
     }
-    if (!rtp_ply_read(m->resolved, &ply, why, sizeof why))
-        return rtp_yaml_fail(&L->y, rtp_yaml_get(&L->y, m->node, "Path"), "Path", "%s", why);
+    if (ok && !rtp_ply_read_input(&in, &ply, why, sizeof why))
+        ok = rtp_yaml_fail(&L->y, rtp_yaml_get(&L->y, m->node, "Path"), "Path", "%s", why);
+    rtp_input_close(&in);
+    rtp_mem_free((char *)path);
+    if (!ok) return false;
     rtp_ply_mesh *owned = push(L, &L->st->plys, sizeof *owned);
     if (!owned) {
         rtp_ply_free(&ply);
@@ -668,8 +726,8 @@ static bool load_assets(loader *L)
 
 static void free_names(char **names, uint32_t count)
 {
-    for (uint32_t i = 0; names && i < count; i++) free(names[i]);
-    free(names);
+    for (uint32_t i = 0; names && i < count; i++) rtp_mem_free(names[i]);
+    rtp_mem_free(names);
 }
 
 static void hand_over(loader *L, rtp_loaded_scene *out)
@@ -712,11 +770,13 @@ bool rtp_scene_load(const char *path, const char *assets_root, rtp_loaded_scene 
         free_names(L.texture_names.data, L.texture_names.count);
         rtp_scene_unload(&partial);
     }
-    for (uint32_t i = 0; i < L.meshes.count; i++) free(((mesh_decl *)L.meshes.data)[i].resolved);
-    free(L.textures.data);
-    free(L.meshes.data);
-    free(L.shaders.data);
-    free(L.materials.data);
+    rtp_name_index *indices[] = {&L.texture_names_ix,  &L.mesh_names_ix, &L.shader_names_ix,
+                                 &L.material_names_ix, &L.texture_files, &L.mesh_files};
+    for (size_t i = 0; i < sizeof indices / sizeof indices[0]; i++) rtp_name_index_free(indices[i]);
+    rtp_mem_free(L.textures.data);
+    rtp_mem_free(L.meshes.data);
+    rtp_mem_free(L.shaders.data);
+    rtp_mem_free(L.materials.data);
     free(L.root);
     rtp_yaml_close(&L.y);
     return ok;
@@ -731,7 +791,7 @@ void rtp_scene_unload(rtp_loaded_scene *scene)
         for (uint32_t i = 0; i < st->images.count; i++) rtp_image_free(&((rtp_image *)st->images.data)[i]);
         for (uint32_t i = 0; i < st->plys.count; i++) rtp_ply_free(&((rtp_ply_mesh *)st->plys.data)[i]);
         list *lists[] = {&st->materials, &st->textures, &st->images, &st->meshes, &st->plys, &st->objects, &st->lights};
-        for (size_t i = 0; i < sizeof lists / sizeof lists[0]; i++) free(lists[i]->data);
+        for (size_t i = 0; i < sizeof lists / sizeof lists[0]; i++) rtp_mem_free(lists[i]->data);
         free(st);
     }
     free_names(scene->node_names, scene->node_count);

@@ -1,10 +1,12 @@
-/* Load + build with an arena that grows (up to the memory cap) until the scene fits. */
+/* Load + build with an arena that grows (up to what the memory cap leaves) until the scene fits. */
 #include "load/scene_open.h"
 
 #include "cli/exit_codes.h"
+#include "load/input_file.h"
+#include "mem/mem.h"
 #include "thread/threads.h"
 #include <stdio.h>
-#include <stdlib.h>
+#include <string.h>
 
 static void apply_overrides(rt_scene_desc *d, const rtp_scene_options *opt)
 {
@@ -21,51 +23,69 @@ static const char *object_name(const rtp_loaded_scene *l, uint32_t object)
     return node < l->node_count ? l->node_names[node] : NULL;
 }
 
+int rtp_load_failure_code(void)
+{
+    if (rtp_input_was_output()) return RTP_EXIT_USAGE;
+    if (rtp_mem_refused()) return RTP_EXIT_MEMORY;
+    return RTP_EXIT_INPUT;
+}
+
+/* What the cap leaves. */
+static size_t room(void) { return rtp_mem_cap() - rtp_mem_in_use(); }
+
+static int fail_memory(rtp_scene *out, const char *path, char *err, size_t err_size)
+{
+    snprintf(err, err_size, "%s: %s", path, rtp_mem_refusal());
+    rtp_scene_close(out);
+    return RTP_EXIT_MEMORY;
+}
+
 int rtp_scene_open(const char *path, const rtp_scene_options *opt, rtp_scene *out, char *err, size_t err_size)
 {
-    out->memory = NULL;
-    if (!rtp_scene_load(path, opt->assets_root, &out->loaded, err, err_size)) return RTP_EXIT_INPUT;
+    memset(out, 0, sizeof *out);
+    const char *shown = strcmp(path, "-") ? path : "<stdin>";
+    if (!rtp_scene_load(path, opt->assets_root, &out->loaded, err, err_size)) return rtp_load_failure_code();
     apply_overrides(&out->loaded.desc, opt);
+    const rt_camera_desc *cam = &out->loaded.desc.camera;
+    if (opt->with_image && !rtp_image_alloc(&out->image, cam->width, cam->height, "the output image"))
+        return fail_memory(out, shown, err, err_size);
     size_t size = (size_t)64 << 20;
     for (;;) {
-        if (size > opt->max_memory) size = opt->max_memory;
-        out->memory = malloc(size);
-        if (!out->memory) {
-            snprintf(err, err_size, "%s: cannot allocate %zu MiB for the scene", path, size >> 20);
-            rtp_scene_unload(&out->loaded);
-            return RTP_EXIT_MEMORY;
-        }
+        if (size > room()) size = room();
+        out->memory = rtp_mem_alloc(size, "the scene arena");
+        if (!out->memory) return fail_memory(out, shown, err, err_size);
         rt_arena_init(&out->arena, out->memory, size);
         rt_build_error be;
         rt_workers workers = rtp_threads_workers(opt->threads);
         rt_status st = rt_scene_build(&out->loaded.desc, &out->arena, &workers, &out->scene, &be);
         if (st == RT_OK) return RTP_EXIT_OK;
-        free(out->memory);
+        rtp_mem_free(out->memory);
         out->memory = NULL;
-        if (st == RT_ERR_NOMEM && size < opt->max_memory) {
+        if (st == RT_ERR_NOMEM && size < room()) {
             size_t grown = out->arena.wanted > size ? out->arena.wanted : size;
-            size = grown > opt->max_memory / 2 ? opt->max_memory : grown * 2;
+            size = grown > room() / 2 ? room() : grown * 2;
             continue;
         }
         const char *name = object_name(&out->loaded, be.object);
-        /* In bytes when the cap is not whole MiB, so --max-memory 1K does not read "0 MiB". */
-        bool mib = opt->max_memory % ((size_t)1 << 20) == 0;
+        char cap[32], used[32];
         if (st == RT_ERR_NOMEM)
-            snprintf(err, err_size, "%s: the scene needs more than --max-memory (%zu %s): %s", path,
-                     mib ? opt->max_memory >> 20 : opt->max_memory, mib ? "MiB" : "bytes", be.what);
+            snprintf(err, err_size, "%s: the scene needs more than --max-memory (%s): %s (%s in use besides)", shown,
+                     rtp_mem_describe(rtp_mem_cap(), cap, sizeof cap), be.what,
+                     rtp_mem_describe(rtp_mem_in_use(), used, sizeof used));
         else if (name)
-            snprintf(err, err_size, "%s: node '%s': %s", path, name, be.what);
+            snprintf(err, err_size, "%s: node '%s': %s", shown, name, be.what);
         else
-            snprintf(err, err_size, "%s: %s", path, be.what);
-        rtp_scene_unload(&out->loaded);
+            snprintf(err, err_size, "%s: %s", shown, be.what);
+        rtp_scene_close(out);
         return st == RT_ERR_NOMEM ? RTP_EXIT_MEMORY : RTP_EXIT_INPUT;
     }
 }
 
 void rtp_scene_close(rtp_scene *b)
 {
-    free(b->memory);
+    rtp_mem_free(b->memory);
     b->memory = NULL;
+    rtp_image_free(&b->image);
     rtp_scene_unload(&b->loaded);
 }
 

@@ -2,12 +2,14 @@
 #ifndef RTP_SCENE_OPEN_H
 #define RTP_SCENE_OPEN_H
 
+#include "image/image.h"
 #include "load/scene_load.h"
 #include <stddef.h>
 
 typedef struct {
     const char *assets_root; /* NULL: found from the scene file's location */
-    size_t max_memory;       /* arena cap in bytes */
+    size_t max_memory;       /* --max-memory: the cap on everything large (mem/mem.h) */
+    bool with_image;         /* also allocate the output image, before the arena takes the rest */
     /* Overrides applied to the file's camera when non-zero / non-negative. */
     uint32_t width, height;
     int32_t depth;    /* -1: keep the file's Maximum Recursion Depth */
@@ -20,13 +22,20 @@ typedef struct {
     rt_scene scene;
     void *memory; /* the arena's memory */
     rt_arena arena;
+    rtp_image image; /* the camera's size, black, when asked for; the caller may take it */
 } rtp_scene;
 
 /* The options' defaults: the file's values kept, a 4 GiB memory cap. */
 rtp_scene_options rtp_scene_default_options(void);
 
-/* On failure prints nothing and returns an RTP_EXIT_* code with one line in err. */
+/* Loads and builds path ("-": standard input). The arena grows until the scene fits,
+ * up to what the memory cap leaves once the scene's files (and the image) are held.
+ * On failure prints nothing and returns an RTP_EXIT_* code with one line in err. */
 int rtp_scene_open(const char *path, const rtp_scene_options *opt, rtp_scene *out, char *err, size_t err_size);
 void rtp_scene_close(rtp_scene *b);
+
+/* The exit code of a failed load or image read: 2 when an input was also an output, 5
+ * when memory was refused, else 3 (the input itself). */
+int rtp_load_failure_code(void);
 
 #endif
