@@ -14,6 +14,12 @@ typedef double rt_real;
 #define RT_PI RT_C(3.14159265358979323846)
 /* Largest finite value: "no hit yet" distances start here. */
 #define RT_REAL_MAX RT_C(1.7976931348623157e308)
+/* How far from the origin triangles are traced: the watertight test forms products of
+ * three coordinates relative to the ray origin (t's numerator, about 333 R^3 for points
+ * and origins within R), finite up to R = 8e101. Scenes with triangles keep every
+ * object and the camera's ray origins within it (core/scene_build.c). */
+#define RT_TRIANGLE_RANGE RT_C(1e100)
+#define RT_TRIANGLE_RANGE_TEXT "1e100"
 
 static inline rt_real rt_add(rt_real a, rt_real b) { return a + b; }
 static inline rt_real rt_sub(rt_real a, rt_real b) { return a - b; }

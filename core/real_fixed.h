@@ -23,6 +23,11 @@ typedef int64_t rt_real;
 /* The saturation rail (about 2^31): "no hit yet" distances start here. The range is
  * symmetric, [-RT_REAL_MAX, RT_REAL_MAX]; INT64_MIN is never produced. */
 #define RT_REAL_MAX ((rt_real)INT64_MAX)
+/* How far from the origin triangles are traced (see real_double.h): the determinant
+ * u + v + w, up to 96 R^2 for points and ray origins within R, stays below the rail
+ * for R < 4729. */
+#define RT_TRIANGLE_RANGE RT_C(4096.0)
+#define RT_TRIANGLE_RANGE_TEXT "4096"
 
 /* a * b as 128 bits: the high half is returned, the low half stored in *lo. */
 static inline uint64_t rt_fx_umul128(uint64_t a, uint64_t b, uint64_t *lo)

@@ -13,6 +13,12 @@ static rt_status fail(rt_build_error *err, rt_status status, const char *what, u
 
 static bool vec_is_finite(rt_vec3 v) { return rt_is_finite(v.x) && rt_is_finite(v.y) && rt_is_finite(v.z); }
 
+/* Within RT_TRIANGLE_RANGE of the origin (real_double.h, real_fixed.h say why). */
+static bool within_triangle_range(rt_vec3 v)
+{
+    return rt_abs(v.x) <= RT_TRIANGLE_RANGE && rt_abs(v.y) <= RT_TRIANGLE_RANGE && rt_abs(v.z) <= RT_TRIANGLE_RANGE;
+}
+
 static bool affine_is_finite(const rt_affine *a)
 {
     for (int i = 0; i < 3; i++)
@@ -63,8 +69,15 @@ static rt_status prepare_mesh(const rt_scene_desc *d, const rt_object_desc *o, u
     *out = d->meshes[o->mesh];
     for (uint32_t t = 0; t < out->triangle_count * 3; t++)
         if (out->indices[t] >= out->vertex_count) return fail(err, RT_ERR_INVALID, "mesh index out of range", index);
-    for (uint32_t v = 0; v < out->vertex_count; v++)
+    for (uint32_t v = 0; v < out->vertex_count; v++) {
         if (!vec_is_finite(out->positions[v])) return fail(err, RT_ERR_INVALID, "mesh vertex is not finite", index);
+        /* Normals are built from products of these: the same range as in world space. */
+        if (!within_triangle_range(out->positions[v]))
+            return fail(err, RT_ERR_INVALID,
+                        "a mesh vertex lies farther than " RT_TRIANGLE_RANGE_TEXT
+                        " from the mesh's origin, beyond the range triangles are traced in",
+                        index);
+    }
     rt_status st = RT_OK;
     if (o->subdivision > 0) st = rt_mesh_subdivide(&d->meshes[o->mesh], o->subdivision, arena, out);
     if (st == RT_OK && !out->normals) {
@@ -139,6 +152,11 @@ static rt_status build_objects(const rt_scene_desc *d, rt_arena *arena, rt_scene
         const rt_mesh_desc *m = &meshes[i];
         for (uint32_t v = 0; v < m->vertex_count; v++) {
             s->positions[v0 + v] = rt_affine_point(&obj->to_world, m->positions[v]);
+            if (m->triangle_count && !within_triangle_range(s->positions[v0 + v]))
+                return fail(err, RT_ERR_INVALID,
+                            "a mesh vertex lies farther than " RT_TRIANGLE_RANGE_TEXT
+                            " from the origin, beyond the range triangles are traced in",
+                            i);
             s->normals[v0 + v] = rt_mat3_apply(&obj->normal_to_world, m->normals[v]);
             if (m->uvs) s->uvs[v0 + v] = m->uvs[v];
         }
@@ -221,6 +239,40 @@ static rt_status build_camera(const rt_camera_desc *c, rt_camera *cam, rt_build_
     return RT_OK;
 }
 
+/* With triangles in the scene, every ray must start within RT_TRIANGLE_RANGE, or a
+ * triangle could vanish without a word: rays start at the camera (its lens or its
+ * orthographic window) and on objects, whose object-space extent is [-0.5, 0.5]^3. */
+static rt_status check_triangle_range(const rt_scene *s, rt_build_error *err)
+{
+    if (s->triangle_count == 0) return RT_OK;
+    for (uint32_t i = 0; i < s->object_count; i++) {
+        const rt_affine *w = &s->objects[i].to_world;
+        if (s->objects[i].kind == RT_SHAPE_MESH) continue; /* its vertices were checked */
+        rt_real reach[3];
+        for (int k = 0; k < 3; k++) {
+            reach[k] = rt_abs(rt_v3_get(w->translation, k));
+            for (int j = 0; j < 3; j++) reach[k] = rt_add(reach[k], rt_mul(rt_abs(w->linear.m[k][j]), RT_C(0.5)));
+        }
+        if (!within_triangle_range(rt_v3(reach[0], reach[1], reach[2])))
+            return fail(err, RT_ERR_INVALID,
+                        "the object reaches farther than " RT_TRIANGLE_RANGE_TEXT
+                        " from the origin, beyond the range triangles are traced in (the scene has triangles)",
+                        i);
+    }
+    const rt_camera *cam = &s->camera;
+    rt_real half_w = rt_abs(rt_mul(cam->ortho_width, RT_C(0.5)));
+    rt_real spread = cam->perspective ? rt_abs(rt_mul(cam->trace.aperture_size, RT_C(0.5)))
+                                      : rt_add(half_w, rt_div(half_w, cam->aspect));
+    rt_vec3 eye = cam->eye;
+    if (!within_triangle_range(
+            rt_v3(rt_add(rt_abs(eye.x), spread), rt_add(rt_abs(eye.y), spread), rt_add(rt_abs(eye.z), spread))))
+        return fail(err, RT_ERR_INVALID,
+                    "the camera's rays start farther than " RT_TRIANGLE_RANGE_TEXT
+                    " from the origin, beyond the range triangles are traced in (the scene has triangles)",
+                    UINT32_MAX);
+    return RT_OK;
+}
+
 rt_status rt_scene_build(const rt_scene_desc *desc, rt_arena *arena, const rt_workers *workers, rt_scene *out,
                          rt_build_error *err)
 {
@@ -232,6 +284,7 @@ rt_status rt_scene_build(const rt_scene_desc *desc, rt_arena *arena, const rt_wo
     if (st == RT_OK) st = build_objects(desc, arena, &s, err);
     if (st == RT_OK) st = build_lights(desc, arena, &s, err);
     if (st == RT_OK) st = build_camera(&desc->camera, &s.camera, err);
+    if (st == RT_OK) st = check_triangle_range(&s, err);
     if (st == RT_OK && rt_bvh_build(&s, arena, workers) != RT_OK)
         st = fail(err, RT_ERR_NOMEM, "out of memory for the BVH", UINT32_MAX);
     if (st == RT_OK) *out = s;

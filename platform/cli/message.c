@@ -14,11 +14,11 @@ static size_t utf8_printable(const unsigned char *s)
     if (n == 0 || s[0] > 0xf4) return 0;
     for (size_t i = 1; i < n; i++)
         if ((s[i] & 0xc0) != 0x80) return 0;
-    if (n == 2 && s[0] == 0xc2 && s[1] < 0xa0) return 0;   /* U+0080..U+009F: C1 controls */
-    if (n == 3 && s[0] == 0xe0 && s[1] < 0xa0) return 0;   /* overlong */
-    if (n == 3 && s[0] == 0xed && s[1] >= 0xa0) return 0;  /* surrogates */
-    if (n == 4 && s[0] == 0xf0 && s[1] < 0x90) return 0;   /* overlong */
-    if (n == 4 && s[0] == 0xf4 && s[1] >= 0x90) return 0;  /* beyond U+10FFFF */
+    if (n == 2 && s[0] == 0xc2 && s[1] < 0xa0) return 0;  /* U+0080..U+009F: C1 controls */
+    if (n == 3 && s[0] == 0xe0 && s[1] < 0xa0) return 0;  /* overlong */
+    if (n == 3 && s[0] == 0xed && s[1] >= 0xa0) return 0; /* surrogates */
+    if (n == 4 && s[0] == 0xf0 && s[1] < 0x90) return 0;  /* overlong */
+    if (n == 4 && s[0] == 0xf4 && s[1] >= 0x90) return 0; /* beyond U+10FFFF */
     return n;
 }
 

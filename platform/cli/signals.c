@@ -53,8 +53,8 @@ void rtp_signals_install(const char *cmd, const char *subject)
     snprintf(command, sizeof command, "%s", cmd);
     has_subject = subject != NULL;
     snprintf(subject_copy, sizeof subject_copy, "%s", subject ? subject : "");
-    message_len = compose(message, sizeof message, command, has_subject ? subject_copy : NULL,
-                          "interrupted; nothing written");
+    message_len =
+        compose(message, sizeof message, command, has_subject ? subject_copy : NULL, "interrupted; nothing written");
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
@@ -99,10 +99,9 @@ void rtp_signals_streaming(const char *name)
 {
     if (name) {
         char what[PATH_MAX + 32];
-        snprintf(what, sizeof what, "interrupted; %s is incomplete",
-                 strcmp(name, "-") ? name : "the standard output");
-        stream_message_len = compose(stream_message, sizeof stream_message, command,
-                                     has_subject ? subject_copy : NULL, what);
+        snprintf(what, sizeof what, "interrupted; %s is incomplete", strcmp(name, "-") ? name : "the standard output");
+        stream_message_len =
+            compose(stream_message, sizeof stream_message, command, has_subject ? subject_copy : NULL, what);
     }
     streaming = name != NULL;
 }

@@ -16,8 +16,7 @@ static uint64_t hash_of(const void *key, size_t length)
 static rtp_name_slot *slot_of(const rtp_name_index *ix, const void *key, size_t length)
 {
     size_t mask = ix->capacity - 1, s = (size_t)hash_of(key, length) & mask;
-    while (ix->slots[s].key &&
-           !(ix->slots[s].length == length && memcmp(ix->slots[s].key, key, length) == 0))
+    while (ix->slots[s].key && !(ix->slots[s].length == length && memcmp(ix->slots[s].key, key, length) == 0))
         s = (s + 1) & mask;
     return &ix->slots[s];
 }

@@ -193,6 +193,13 @@ static bool store_scalar(ply_reader *r, ply_role role, double d)
         snprintf(what, sizeof what, "%s is not a finite number", names[role]);
         return fail_value(r, what);
     }
+    /* The core refuses the same in world space; here the place in the file can be named. */
+    if (role <= PLY_Z && fabs(d) > rt_to_double(RT_TRIANGLE_RANGE)) {
+        char what[128];
+        snprintf(what, sizeof what, "%s = %g is beyond +-" RT_TRIANGLE_RANGE_TEXT ", the range triangles are traced in",
+                 names[role], d);
+        return fail_value(r, what);
+    }
     rtp_ply_mesh *m = r->mesh;
     uint32_t v = (uint32_t)r->index;
     rt_real x = rt_from_double(d);

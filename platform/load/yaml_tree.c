@@ -30,7 +30,7 @@ typedef struct {
     open_collection *open;
     uint32_t depth, open_cap, flow_depth;
     uint64_t flow_work, flow_budget; /* the sum of the flow depths of the events so far, and its bound */
-    uint32_t *slots; /* duplicate-key table, reused map to map */
+    uint32_t *slots;                 /* duplicate-key table, reused map to map */
     size_t slot_cap;
 } builder;
 
@@ -47,7 +47,10 @@ static bool fail_at(builder *b, yaml_mark_t at, const char *fmt, ...)
     return false;
 }
 
-static bool out_of_memory(builder *b) { return snprintf(b->err, b->err_size, "%s: %s", b->file, rtp_mem_refusal()), false; }
+static bool out_of_memory(builder *b)
+{
+    return snprintf(b->err, b->err_size, "%s: %s", b->file, rtp_mem_refusal()), false;
+}
 
 /* Makes room for one more element of size bytes in *array of *cap elements. */
 static bool grow(builder *b, void **array, size_t count, size_t *cap, size_t size, const char *what)

@@ -60,7 +60,8 @@ static bool reserve(size_t size)
         if (size > limit || now > limit - size) return false;
     } while (!atomic_compare_exchange_weak(&in_use, &now, now + size));
     size_t high = atomic_load(&peak);
-    while (now + size > high && !atomic_compare_exchange_weak(&peak, &high, now + size)) {}
+    while (now + size > high && !atomic_compare_exchange_weak(&peak, &high, now + size)) {
+    }
     return true;
 }
 
