@@ -160,9 +160,9 @@ int rtp_cmd_info(int argc, char **argv)
     rtp_scene_stats st;
     rtp_scene_stats_compute(&built, &st);
     if (a.json)
-        print_json(a.scene, &built, &st);
+        print_json(rtp_cli_scene_name(a.scene), &built, &st);
     else
-        print_text(a.scene, &built, &st);
+        print_text(rtp_cli_scene_name(a.scene), &built, &st);
     rtp_scene_close(&built);
     return rtp_cli_flush_stdout("info");
 }

@@ -129,7 +129,7 @@ static ssize_t read_fully(int fd, uint8_t *buf, size_t want)
 static bool read_stream(rtp_input *in, uint8_t **data, size_t *size, char *err, size_t err_size)
 {
     size_t cap = STDIN_CHUNK, got = 0;
-    uint8_t *buf = rtp_mem_alloc(cap + 1, "the scene from standard input");
+    uint8_t *buf = rtp_mem_alloc(cap, "the scene from standard input");
     for (;;) {
         if (!buf) return snprintf(err, err_size, "%s", rtp_mem_refusal()), false;
         ssize_t n = read_fully(in->fd, buf + got, cap - got);
@@ -140,12 +140,11 @@ static bool read_stream(rtp_input *in, uint8_t **data, size_t *size, char *err, 
         }
         got += (size_t)n;
         if (got < cap) break;
-        uint8_t *grown = rtp_mem_realloc(buf, 2 * cap + 1, "the scene from standard input");
+        uint8_t *grown = rtp_mem_realloc(buf, 2 * cap, "the scene from standard input");
         if (!grown) rtp_mem_free(buf);
         buf = grown;
         cap *= 2;
     }
-    buf[got] = 0;
     *data = buf;
     *size = got;
     return true;
@@ -165,13 +164,12 @@ bool rtp_input_read(rtp_input *in, size_t max_size, const char *kind, uint8_t **
         if (max_size && length > max_size)
             snprintf(err, err_size, "file too large for %s (over %s)", kind,
                      rtp_mem_describe(max_size, limit, sizeof limit));
-        else if (!(buf = rtp_mem_alloc(length + 1, "the file")))
+        else if (!(buf = rtp_mem_alloc(length ? length : 1, "the file")))
             snprintf(err, err_size, "%s", rtp_mem_refusal());
         else if ((got = read_fully(in->fd, buf, length)) < 0)
             snprintf(err, err_size, "cannot read: %s", strerror(errno));
         ok = buf && got >= 0;
-        if (ok) {
-            buf[got] = 0; /* a file that shrank while reading ends early: the parsers say truncated */
+        if (ok) { /* a file that shrank while reading ends early: the parsers say truncated */
             *data = buf;
             *size = (size_t)got;
         } else {

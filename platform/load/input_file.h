@@ -31,8 +31,7 @@ typedef struct {
  * false with the problem, without the path, in err: the system's reason when the file
  * could not be opened (in->open_failed), else e.g. "is a FIFO, not a regular file". */
 bool rtp_input_open(rtp_input *in, const char *path, bool allow_stdin, char *err, size_t err_size);
-/* Reads the whole file into *data (rtp_mem, released with rtp_mem_free; one spare byte
- * after the contents is 0) and closes it. Files longer than max_size bytes (0: no limit)
+/* Reads the whole file into *data (rtp_mem, released with rtp_mem_free) and closes it. Files longer than max_size bytes (0: no limit)
  * are refused as "file too large for <kind> ..." before anything is read, and so are
  * files that do not fit under --max-memory. On failure the problem is in err. */
 bool rtp_input_read(rtp_input *in, size_t max_size, const char *kind, uint8_t **data, size_t *size, char *err,

@@ -255,8 +255,13 @@ bool rtp_yaml_tree_parse(const uint8_t *data, size_t size, const char *file, rtp
     memset(out, 0, sizeof *out);
     builder b = {.file = file, .err = err, .err_size = err_size, .t = out};
     b.flow_budget = (uint64_t)RTP_YAML_FLOW_WORK_PER_BYTE * size + RTP_YAML_FLOW_WORK_FREE;
+    size_t held = size <= SIZE_MAX / 2 ? 2 * size : SIZE_MAX;
+    if (!rtp_mem_hold(held, "the YAML parser's buffers (twice the file)")) return out_of_memory(&b);
     yaml_parser_t parser;
-    if (!yaml_parser_initialize(&parser)) return snprintf(err, err_size, "%s: out of memory", file), false;
+    if (!yaml_parser_initialize(&parser)) {
+        rtp_mem_unhold(held);
+        return snprintf(err, err_size, "%s: out of memory", file), false;
+    }
     yaml_parser_set_input_string(&parser, data, size);
     bool ok = true, done = false;
     while (ok && !done) {
@@ -269,6 +274,7 @@ bool rtp_yaml_tree_parse(const uint8_t *data, size_t size, const char *file, rtp
         yaml_event_delete(&event);
     }
     yaml_parser_delete(&parser);
+    rtp_mem_unhold(held);
     rtp_mem_free(b.pending);
     rtp_mem_free(b.open);
     rtp_mem_free(b.slots);

@@ -75,6 +75,15 @@ bool rtp_mem_fits(size_t size, const char *what)
     return false;
 }
 
+bool rtp_mem_hold(size_t size, const char *what)
+{
+    if (reserve(size)) return true;
+    refuse(what, size, true);
+    return false;
+}
+
+void rtp_mem_unhold(size_t size) { release(size); }
+
 void *rtp_mem_alloc(size_t size, const char *what)
 {
     if (size > SIZE_MAX - sizeof(block_header) || !reserve(size)) {

@@ -29,6 +29,10 @@ void rtp_mem_free(void *p);
 /* Whether size more bytes would fit, for sizes known before the work that needs them
  * (a PNG's header, a file's length); false records the refusal as an allocation would. */
 bool rtp_mem_fits(size_t size, const char *what);
+/* Counts size bytes that a library without an allocator takes (libyaml's buffers)
+ * until rtp_mem_unhold(size); false, with the refusal recorded, when they do not fit. */
+bool rtp_mem_hold(size_t size, const char *what);
+void rtp_mem_unhold(size_t size);
 
 /* True once an allocation was refused (over the cap or out of memory): a command then
  * exits with 5. rtp_mem_refusal() is the last refusal in words, e.g. "the decoded texture
