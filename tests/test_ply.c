@@ -219,7 +219,7 @@ Test(ply, every_scalar_type_and_alias_in_both_byte_orders)
                                  {"ushort", "junk"}, {"uint", "more"}, {"float64", "nx"}, {"float32", "ny"},
                                  {"int32", "nz"},    {"uint16", "s"},  {"int8", "t"},     {"short", "q"}};
     static const double values[] = {
-        -128, -32768, 0.1, 255, 65535, 4294967295.0, 0.5, 0.25, -2, 65535, 127, 5, 127, 32767, -1e300, 0, 0,
+        -128, -32768, 0.1, 255, 65535, 4294967295.0, 0.5, 0.25, -2, 65535, 127, 5, 127, 32767, -1e100, 0, 0,
         0,    0,      0,   7,   0,     -128,         0,   1,    2,  3,     1,   1, 1,   1,     1,      1, 1,
         1,    1};
     static const int faces[] = {3, 0, 1, 2};
@@ -232,7 +232,7 @@ Test(ply, every_scalar_type_and_alias_in_both_byte_orders)
         cr_expect_eq(m.positions[0].x, -128.0, "%s", formats[i]);
         cr_expect_eq(m.positions[0].y, -32768.0, "%s", formats[i]);
         cr_expect_eq(m.positions[0].z, 0.1, "%s", formats[i]);
-        cr_expect_eq(m.positions[1].z, -1e300, "%s", formats[i]);
+        cr_expect_eq(m.positions[1].z, -1e100, "%s", formats[i]); /* beyond float, at the triangle range */
         cr_expect_eq(m.normals[0].x, 0.5);
         cr_expect_eq(m.normals[0].y, 0.25);
         cr_expect_eq(m.normals[0].z, -2.0);
@@ -421,6 +421,16 @@ Test(ply, hostile_ascii_bodies)
         snprintf(name, sizeof name, "body%zu.ply", i);
         expect_error(put_text(name, cases[i].text), cases[i].error);
     }
+}
+
+/* Coordinates the triangle test cannot trace (core/real_*.h: RT_TRIANGLE_RANGE) are
+ * refused where the file has them, not left to vanish from the image. */
+Test(ply, coordinates_beyond_the_triangle_range_are_refused_with_their_line)
+{
+    expect_error(put_text("far.ply",
+                          HEAD "element vertex 3\nproperty double x\nproperty double y\nproperty double z\n" FACE
+                               "0 0 0\n1 0 0\n0 -2e154 0\n3 0 1 2\n"),
+                 "line 12: vertex 2 of 3: y = -2e+154 is beyond +-" RT_TRIANGLE_RANGE_TEXT);
 }
 
 /* Binary files whose header is text and whose body is given as bytes. */
