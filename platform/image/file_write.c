@@ -145,27 +145,23 @@ bool rtp_file_write(const char *path, const void *data, size_t size, char *err, 
 {
     if (!strcmp(path, "-")) return write_stream("-", STDOUT_FILENO, data, size, err, err_size);
     struct stat st;
-    char *target = NULL; /* a symbolic link's resolved target */
-    if (lstat(path, &st) == 0 && S_ISLNK(st.st_mode)) {
-        if (!(target = realpath(path, NULL)))
-            return fail(err, err_size, path,
-                        errno == ENOENT ? "is a symbolic link to a file that does not exist" : strerror(errno));
-        path = target;
+    if (stat(path, &st) != 0) { /* stat follows links, also /proc's (/dev/stdout on a pipe) */
+        int e = errno;
+        if (e == ENOENT && lstat(path, &st) == 0 && S_ISLNK(st.st_mode))
+            return fail(err, err_size, path, "is a symbolic link to a file that does not exist");
+        return e == ENOENT ? write_atomic(path, NULL, data, size, err, err_size) : fail_errno(err, err_size, path, e);
     }
-    bool ok;
-    if (stat(path, &st) != 0)
-        ok = errno == ENOENT ? write_atomic(path, NULL, data, size, err, err_size)
-                             : fail_errno(err, err_size, path, errno);
-    else if (S_ISDIR(st.st_mode))
-        ok = fail(err, err_size, path, "is a directory");
-    else if (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode))
-        ok = write_device(path, err, err_size, data, size);
-    else if (!S_ISREG(st.st_mode))
-        ok = fail(err, err_size, path, "is neither a regular file, a character device nor a FIFO: not written");
-    else if (faccessat(AT_FDCWD, path, W_OK, AT_EACCESS) != 0)
-        ok = fail_errno(err, err_size, path, errno);
-    else
-        ok = write_atomic(path, &st, data, size, err, err_size);
+    if (S_ISDIR(st.st_mode)) return fail(err, err_size, path, "is a directory");
+    if (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode)) return write_device(path, err, err_size, data, size);
+    if (!S_ISREG(st.st_mode))
+        return fail(err, err_size, path, "is neither a regular file, a character device nor a FIFO: not written");
+    if (faccessat(AT_FDCWD, path, W_OK, AT_EACCESS) != 0) return fail_errno(err, err_size, path, errno);
+    /* A link's target is replaced, in the target's folder; the link stays. */
+    struct stat link;
+    char *target = NULL;
+    if (lstat(path, &link) == 0 && S_ISLNK(link.st_mode) && !(target = realpath(path, NULL)))
+        return fail_errno(err, err_size, path, errno);
+    bool ok = write_atomic(target ? target : path, &st, data, size, err, err_size);
     free(target);
     return ok;
 }
