@@ -26,7 +26,7 @@ Test(message, controls_are_escaped)
 Test(message, printable_utf8_is_kept_and_c1_and_broken_bytes_escaped)
 {
     expect_escaped("caf\xc3\xa9 \xe2\x82\xac", "caf\xc3\xa9 \xe2\x82\xac"); /* café € */
-    expect_escaped("csi\xc2\x9b", "csi\\xc2\\x9b");                     /* U+009B, a C1 control */
+    expect_escaped("csi\xc2\x9b", "csi\\xc2\\x9b");                         /* U+009B, a C1 control */
     expect_escaped("bad\xff", "bad\\xff");
     expect_escaped("cut\xe2\x82", "cut\\xe2\\x82");   /* a sequence cut short */
     expect_escaped("long\xc0\xaf", "long\\xc0\\xaf"); /* overlong '/' */

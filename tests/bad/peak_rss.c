@@ -41,7 +41,8 @@ int main(int argc, char **argv)
     int status;
     struct rusage usage;
     pid_t got;
-    while ((got = wait4(pid, &status, 0, &usage)) < 0 && errno == EINTR) {}
+    while ((got = wait4(pid, &status, 0, &usage)) < 0 && errno == EINTR) {
+    }
     if (got != pid) return perror("wait4"), 125;
     FILE *out = fopen(argv[1], "w");
     if (!out) return perror(argv[1]), 125;
