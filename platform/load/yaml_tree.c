@@ -200,7 +200,7 @@ static bool close_collection(builder *b)
     while (b->child_count + (size_t)count > cap)
         if (!grow(b, (void **)&t->children, cap, &cap, sizeof *t->children, "the YAML tree")) return false;
     b->child_cap = cap > UINT32_MAX ? UINT32_MAX : (uint32_t)cap;
-    memcpy(t->children + b->child_count, b->pending + c->pending_at, count * sizeof *t->children);
+    if (count) memcpy(t->children + b->child_count, b->pending + c->pending_at, count * sizeof *t->children);
     n = &t->nodes[c->node];
     n->first = b->child_count;
     n->count = n->kind == RTP_YAML_MAP ? count / 2 : count;
