@@ -113,3 +113,4 @@ clean:
 -include fuzz/fuzz.mk
 -include bench/bench.mk
 -include tests/valgrind.mk
+-include web/web.mk
