@@ -44,7 +44,7 @@ WEB_API_OBJ := $(patsubst %.c,$(WEB_BUILD)/%.o,$(wildcard web/wasm/rtk_wasm*.c))
 WEB_ARCHIVES := $(WEB_BUILD)/librtplatform.a $(WEB_BUILD)/librtcore.a $(WEB_BUILD)/libspng.a \
 	$(WEB_BUILD)/libyaml.a $(WEB_BUILD)/libz.a
 
-.PHONY: web web-deps web-cli serve check-web web-clean
+.PHONY: web web-deps web-cli web-site serve check-web web-clean
 clean: web-clean
 
 web-deps:
@@ -102,6 +102,37 @@ $(WEB_BUILD)/rtk-cli.wasm: $(WEB_BUILD)/platform/main.o $(WEB_ARCHIVES)
 $(WEB_SITE)/rtk.wasm: $(WEB_API_OBJ) $(WEB_ARCHIVES)
 	@mkdir -p $(@D)
 	$(WASI_CC) $(WASM_OPT) $(WASM_LDFLAGS) -mexec-model=reactor -o $@ $^ $(WASM_LIBS)
+
+# The static site: the page, its npm libraries (pinned by web/package-lock.json), the
+# corpus (copied from $(RTK_SHARED)/cse457 each time, never committed) and its list.
+RTK_SHARED ?= ../shared
+web: web-deps
+	$(MAKE) $(WEB_SITE)/rtk.wasm web-site
+	@echo "web: built $(WEB_SITE)/ ($$(du -k $(WEB_SITE)/rtk.wasm | cut -f1) KiB of wasm); make serve to open it"
+
+web-site:
+	@if [ ! -d web/node_modules ] || [ web/package-lock.json -nt web/node_modules/.package-lock.json ]; then \
+	  cd web && npm ci --no-audit --no-fund; fi
+	@mkdir -p $(WEB_SITE)/vendor/three/addons/controls $(WEB_SITE)/vendor/three/addons/renderers \
+		$(WEB_SITE)/vendor/three/addons/lines $(WEB_SITE)/vendor/browser_wasi_shim
+	cp web/app/* $(WEB_SITE)/
+	cp web/node_modules/three/build/three.module.js web/node_modules/three/build/three.core.js $(WEB_SITE)/vendor/three/
+	cp web/node_modules/three/examples/jsm/controls/OrbitControls.js $(WEB_SITE)/vendor/three/addons/controls/
+	cp web/node_modules/three/examples/jsm/renderers/Projector.js web/node_modules/three/examples/jsm/renderers/SVGRenderer.js $(WEB_SITE)/vendor/three/addons/renderers/
+	cp $(addprefix web/node_modules/three/examples/jsm/lines/,Line2.js LineGeometry.js LineMaterial.js \
+		LineSegments2.js LineSegmentsGeometry.js) $(WEB_SITE)/vendor/three/addons/lines/
+	cp web/node_modules/@bjorn3/browser_wasi_shim/dist/*.js $(WEB_SITE)/vendor/browser_wasi_shim/
+	cp web/node_modules/three/LICENSE $(WEB_SITE)/vendor/three/
+	cp web/node_modules/@bjorn3/browser_wasi_shim/LICENSE-MIT $(WEB_SITE)/vendor/browser_wasi_shim/ 2>/dev/null || true
+	@test -d $(RTK_SHARED)/cse457 || { echo "web: no corpus at $(RTK_SHARED)/cse457 (set RTK_SHARED)" >&2; exit 1; }
+	rm -rf $(WEB_SITE)/cse457 && cp -r $(RTK_SHARED)/cse457 $(WEB_SITE)/cse457
+	node web/tools/corpus_manifest.mjs $(WEB_SITE)
+
+# Serves the built site on localhost until interrupted.
+serve:
+	@test -f $(WEB_SITE)/index.html || { echo "serve: no site yet; run make web first" >&2; exit 1; }
+	@echo "rtk web: http://127.0.0.1:$(WEB_PORT)/"
+	@cd $(WEB_SITE) && exec python3 -m http.server $(WEB_PORT) --bind 127.0.0.1
 
 -include $(WEB_API_OBJ:.o=.d) $(WEB_CORE_OBJ:.o=.d) $(WEB_PLATFORM_OBJ:.o=.d) $(WEB_BUILD)/platform/main.d
 
