@@ -17,7 +17,7 @@ WASM_OPT := -O2
 WASM_BASE := -std=c11 $(WASM_OPT) $(WARN) $(DET_FLAGS)
 WASM_CORE_CFLAGS := $(WASM_BASE) -ffreestanding -fno-builtin
 WASM_LIB_CFLAGS := -std=gnu11 $(WASM_OPT) $(DET_FLAGS) -w
-WASM_LDFLAGS := -Wl,--max-memory=4294967296 -Wl,-z,stack-size=1048576 -Wl,--strip-debug
+WASM_LDFLAGS := -Wl,--max-memory=4294967296 -Wl,-z,stack-size=8388608 -Wl,--strip-debug
 
 WEB_DEBSRC := $(WEB_BUILD)/deb-src
 YAML_DIR := $(WEB_DEBSRC)/libyaml-0.2.5
@@ -133,6 +133,15 @@ serve:
 	@test -f $(WEB_SITE)/index.html || { echo "serve: no site yet; run make web first" >&2; exit 1; }
 	@echo "rtk web: http://127.0.0.1:$(WEB_PORT)/"
 	@cd $(WEB_SITE) && exec python3 -m http.server $(WEB_PORT) --bind 127.0.0.1
+
+# The browser tests against native build/rtk; installs Chromium (Debian) and the npm
+# packages (playwright-core drives /usr/bin/chromium; no browser download).
+check-web:
+	$(MAKE) web-deps WEB_EXTRA_DEB="$(WEB_TEST_DEB_PACKAGES)"
+	$(MAKE) deps
+	$(MAKE) build/rtk
+	$(MAKE) web
+	web/test/check_web.sh
 
 -include $(WEB_API_OBJ:.o=.d) $(WEB_CORE_OBJ:.o=.d) $(WEB_PLATFORM_OBJ:.o=.d) $(WEB_BUILD)/platform/main.d
 

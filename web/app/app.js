@@ -11,6 +11,9 @@ import { CompareView } from './compare.js';
 // Scene memory each wasm32 instance may use (its address space is 4 GiB, and the page
 // holds one copy of the scene here and one per worker).
 export const MAX_MEMORY_MIB = 1024;
+// Pixels the page renders at most: every worker and the page hold the image (and the
+// canvas is limited too); larger images are refused before any worker starts.
+export const MAX_PIXELS = 8192 * 8192;
 
 const $ = (id) => document.getElementById(id);
 const app = {
@@ -141,6 +144,13 @@ async function renderScene() {
     return;
   }
   const width = app.rtk.width, height = app.rtk.height;
+  if (width * height > MAX_PIXELS) {
+    showError(`${app.scene}: a ${width}x${height} image is ${((width * height) / 1048576).toFixed(0)} Mpixels; the page renders at most ${MAX_PIXELS / 1048576} Mpixels`,
+      "This scene is too big for the page's memory; not rendered. rtk render renders it natively.");
+    status('Scene too big for the page');
+    setBusy(false);
+    return;
+  }
   Object.assign(app, { width, height });
   $('stat-size').textContent = `${width} × ${height}, ${app.rtk.samples} sample${app.rtk.samples > 1 ? 's' : ''}/pixel`;
   const blob = app.rtk.pack();

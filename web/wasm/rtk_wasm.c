@@ -21,7 +21,7 @@
 
 static rt_built_scene built;
 static bool is_open;
-static uint8_t *image;   /* the scene's width * height * 3 bytes, for rtk_render_region */
+static uint8_t *image;   /* a worker's width * height * 3 bytes, for rtk_render_region */
 static uint8_t *blob;    /* rtk_pack's bytes, or a worker's blob scene's arena */
 static size_t blob_size;
 
@@ -50,7 +50,7 @@ static int allocate_image(const char *what)
     return RT_EXIT_MEMORY;
 }
 
-/* rtk render's way in: path with --width/--height (0 keeps the file's), --depth/--aa
+/* The page's way in (it renders in workers, from rtk_pack's blob): path with --width/--height (0 keeps the file's), --depth/--aa
  * (-1 keeps the file's) and --max-memory in MiB. Returns an RT_EXIT_* code; on failure
  * the native message is on stderr. */
 EXPORT(rtk_open)
@@ -65,9 +65,8 @@ int rtk_open(const char *path, uint32_t width, uint32_t height, int32_t depth, i
     opt.max_memory = (size_t)max_memory_mib << 20;
     int rc = rt_open_scene_or_report("render", path, &opt, &built);
     fflush(stderr);
-    if (rc != RT_EXIT_OK) return rc;
-    is_open = true;
-    return allocate_image(path);
+    is_open = rc == RT_EXIT_OK;
+    return rc;
 }
 
 EXPORT(rtk_width) uint32_t rtk_width(void) { return built.scene.camera.width; }
