@@ -95,13 +95,13 @@ $(WEB_BUILD)/web/wasm/%.o: web/wasm/%.c | $(WEB_SOURCES_STAMP)
 # The rtk command itself, for node's WASI (web/test/cli_hashes.mjs checks it against build/rtk).
 web-cli: web-deps
 	$(MAKE) $(WEB_BUILD)/rtk-cli.wasm
-$(WEB_BUILD)/rtk-cli.wasm: $(WEB_BUILD)/platform/main.o $(WEB_ARCHIVES)
-	$(WASI_CC) $(WASM_OPT) $(WASM_LDFLAGS) -o $@ $^ $(WASM_LIBS)
+$(WEB_BUILD)/rtk-cli.wasm: $(WEB_BUILD)/platform/main.o $(WEB_ARCHIVES) web/web.mk
+	$(WASI_CC) $(WASM_OPT) $(WASM_LDFLAGS) -o $@ $(filter-out web/web.mk,$^) $(WASM_LIBS)
 
 # The browser's module: a WASI reactor exporting web/wasm/rtk_wasm*.c's functions.
-$(WEB_SITE)/rtk.wasm: $(WEB_API_OBJ) $(WEB_ARCHIVES)
+$(WEB_SITE)/rtk.wasm: $(WEB_API_OBJ) $(WEB_ARCHIVES) web/web.mk
 	@mkdir -p $(@D)
-	$(WASI_CC) $(WASM_OPT) $(WASM_LDFLAGS) -mexec-model=reactor -o $@ $^ $(WASM_LIBS)
+	$(WASI_CC) $(WASM_OPT) $(WASM_LDFLAGS) -mexec-model=reactor -o $@ $(filter-out web/web.mk,$^) $(WASM_LIBS)
 
 # The static site: the page, its npm libraries (pinned by web/package-lock.json), the
 # corpus (copied from $(RTK_SHARED)/cse457 each time, never committed) and its list.

@@ -25,6 +25,8 @@ const app = {
 window.rtkApp = app; // for the browser tests and the curious
 
 function status(text) { $('status').textContent = text; }
+// <body data-state>: loading, ready, rendering, done, error or cancelled, for scripts driving the page.
+function state(name) { document.body.dataset.state = name; }
 
 function showError(text, headline) {
   app.lastError = text;
@@ -87,11 +89,15 @@ function markCurrent() {
 
 async function setUserFiles(files) {
   if (!Object.keys(files).length) return;
+  state('loading');
   app.userFiles = files;
   await resetInstance();
   fillSceneList();
   const scenes = sceneFiles(files);
-  if (!scenes.length) return showError('no .yaml scene file in the folder you opened');
+  if (!scenes.length) {
+    state('error');
+    return showError('no .yaml scene file in the folder you opened');
+  }
   await openAndRender(scenes[0].slice(1));
 }
 
@@ -134,10 +140,12 @@ async function renderScene() {
   $('progress-bar').style.width = '0';
   const t0 = performance.now();
   status(`Loading ${app.scene}…`);
+  state('loading');
   await new Promise((r) => setTimeout(r, 0));
   const rc = app.rtk.open(app.scene, { ...options(), maxMemoryMiB: MAX_MEMORY_MIB });
   if (rc !== EXIT.OK) {
     const line = app.rtk.stderr();
+    state('error');
     showError(line, rc === EXIT.MEMORY ? `This scene is too big for the page's memory (${MAX_MEMORY_MIB} MiB of scene per WebAssembly instance); not rendered.` : null);
     status(rc === EXIT.MEMORY ? 'Scene too big for the page' : 'The scene could not be loaded');
     setBusy(false);
@@ -148,6 +156,7 @@ async function renderScene() {
     showError(`${app.scene}: a ${width}x${height} image is ${((width * height) / 1048576).toFixed(0)} Mpixels; the page renders at most ${MAX_PIXELS / 1048576} Mpixels`,
       "This scene is too big for the page's memory; not rendered. rtk render renders it natively.");
     status('Scene too big for the page');
+    state('error');
     setBusy(false);
     return;
   }
@@ -163,6 +172,7 @@ async function renderScene() {
   const workers = navigator.hardwareConcurrency || 2;
   $('stat-workers').textContent = String(workers);
   status(`Rendering ${app.scene}…`);
+  state('rendering');
   app.render = new TiledRender({
     module: app.module, blob, width, height, maxMemoryMiB: MAX_MEMORY_MIB, workers,
     onTile: (t, done, total) => {
@@ -177,6 +187,7 @@ async function renderScene() {
     app.rgb = await app.render.run();
   } catch (e) {
     status(e.cancelled ? 'Render cancelled' : 'Render failed');
+    state(e.cancelled ? 'cancelled' : 'error');
     if (!e.cancelled) showError(e.message, e.rc === EXIT.MEMORY ? "This scene is too big for the page's memory; not rendered." : null);
     setBusy(false);
     return;
@@ -187,6 +198,7 @@ async function renderScene() {
   $('stat-hash').textContent = app.rtk.hash(app.rgb, width, height);
   app.renderDone = true;
   status(`Rendered ${app.scene} in ${seconds.toFixed(2)} s`);
+  state('done');
   setBusy(false);
   drawDebugImage();
   app.compare.sceneChanged();
@@ -323,6 +335,7 @@ async function main() {
   $('view3d-reset').onclick = () => app.view3d?.resetView();
   status(`Ready: ${app.manifest.scenes.length} corpus scenes`);
   app.ready = true;
+  state('ready');
   const first = new URLSearchParams(location.search).get("scene") || app.manifest.scenes.find((s) => s.endsWith("/sphere_refract.yaml")) || app.manifest.scenes[0];
   if (first) openAndRender(first);
 }
