@@ -1,7 +1,7 @@
 // The page: scene list, render settings and the tiled render, and the three views
 // (render, debugger, compare). The kernel runs in rtk.wasm: one instance here (loading,
 // debugging, comparing) and one per render worker.
-import { Rtk, EXIT, ALL_SAMPLES, ppm } from './rtk.js';
+import { Rtk, EXIT, ALL_SAMPLES } from './rtk.js';
 import { TiledRender } from './render.js';
 import { loadManifest, corpus, fromFileList, fromDrop, sceneFiles } from './files.js';
 import { SceneView, RAY_STYLE } from './view3d.js';
@@ -275,10 +275,11 @@ function debugPixel(x, y, sample = ALL_SAMPLES) {
   switchView('debug');
   drawDebugImage();
   drawLoupe(x, y);
-  const { rc, json, error } = app.rtk.debug(x, y, sample);
+  const { rc, text, json, error } = app.rtk.debug(x, y, sample);
   if (rc !== EXIT.OK) return showError(error);
   showError(error); // "the ray log is full" when it is, else nothing
   app.debugDoc = json;
+  $('debug-json').textContent = text;
   ensureSceneView();
   app.view3d.setTree(json);
   const rays = fillRayTable($('ray-table').tBodies[0], json, (i) => app.view3d.highlight(i));

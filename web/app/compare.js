@@ -73,7 +73,8 @@ export class CompareView {
     }
     const rtk = this.app.rtk, { width, height } = this.app;
     rtk.writeFile(RENDER_PATH, ppm(this.app.rgb, width, height));
-    const { rc, metrics, error } = rtk.compare(RENDER_PATH, path);
+    const { rc, text, metrics, error } = rtk.compare(RENDER_PATH, path);
+    $('compare-json').textContent = text;
     if (rc !== 0) {
       box.innerHTML = `<dt>error</dt><dd class="error-line"></dd>`;
       box.querySelector('dd').textContent = error;

@@ -131,10 +131,11 @@ export class Rtk {
     return [...digest].map((b) => b.toString(16).padStart(2, '0')).join('');
   }
 
-  // `rtk debug --json` of a pixel of the open scene: {rc, json, error}.
+  // `rtk debug --json` of a pixel of the open scene: {rc, text, json, error}.
   debug(x, y, sample = ALL_SAMPLES) {
     const rc = this.call(this.x.rtk_debug, [], x, y, sample);
-    return { rc, json: rc === EXIT.OK ? JSON.parse(this.stdout()) : null, error: this.stderr() };
+    const text = this.stdout();
+    return { rc, text, json: rc === EXIT.OK ? JSON.parse(text) : null, error: this.stderr() };
   }
 
   sceneView() {
@@ -147,10 +148,11 @@ export class Rtk {
     return view;
   }
 
-  // `rtk compare A B --json` on two files of the file system: {rc, metrics, error}.
+  // `rtk compare A B --json` on two files of the file system: {rc, text, metrics, error}.
   compare(a, b) {
     const rc = this.call(this.x.rtk_compare, [a, b]);
-    return { rc, metrics: rc === EXIT.OK ? JSON.parse(this.stdout()) : null, error: this.stderr() };
+    const text = this.stdout();
+    return { rc, text, metrics: rc === EXIT.OK ? JSON.parse(text) : null, error: this.stderr() };
   }
 
   // The `rtk compare --diff` heat map of two files (width * height * 3 bytes), or null.

@@ -115,9 +115,10 @@ try {
     current = scene;
     await clickPixel(x, y);
     const path = join(corpusDir, 'assets/trace', scene);
-    const want = JSON.parse(rtk(['debug', path, '--pixel', `${x},${y}`, '--json']).out);
+    const wantText = rtk(['debug', path, '--pixel', `${x},${y}`, '--json']).out, want = JSON.parse(wantText);
     const doc = await page.evaluate(() => rtkApp.debugDoc);
-    check(`debug ${scene} (${x}, ${y}): the page's tree = rtk debug --json`, same(doc, want));
+    check(`debug ${scene} (${x}, ${y}): the page's tree = rtk debug --json, and its text byte for byte`,
+      same(doc, want) && (await page.textContent('#debug-json')) === wantText);
     const rows = await tableRows(), nat = nativeRows(rtk(['debug', path, '--pixel', `${x},${y}`]).out);
     check(`debug ${scene} (${x}, ${y}): table rows (kind, depth, t, colour) = rtk debug's text`, same(rows, nat), `page ${JSON.stringify(rows).slice(0, 400)}\n      native ${JSON.stringify(nat).slice(0, 400)}`);
     const counts = await page.evaluate(() => rtkApp.view3d.counts());
