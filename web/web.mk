@@ -8,7 +8,7 @@
 
 WEB_BUILD := build-web
 WEB_SITE := $(WEB_BUILD)/site
-WEB_DEB_PACKAGES := clang lld wasi-libc libclang-rt-14-dev-wasm32 dpkg-dev
+WEB_DEB_PACKAGES := clang lld llvm wasi-libc libclang-rt-14-dev-wasm32 dpkg-dev
 WEB_TEST_DEB_PACKAGES := chromium
 WEB_PORT ?= 8457
 WASI_CC := clang --target=wasm32-wasi

@@ -9,8 +9,9 @@ import { fillRayTable } from './raytable.js';
 import { CompareView } from './compare.js';
 
 // Scene memory each wasm32 instance may use (its address space is 4 GiB, and the page
-// holds one copy of the scene here and one per worker).
-export const MAX_MEMORY_MIB = 1024;
+// holds one copy of the scene here and one per worker); ?max-memory=MIB changes it.
+const memoryParam = Number(new URLSearchParams(location.search).get('max-memory'));
+export const MAX_MEMORY_MIB = memoryParam >= 1 && memoryParam <= 3072 ? Math.floor(memoryParam) : 1024;
 // Pixels the page renders at most: every worker and the page hold the image (and the
 // canvas is limited too); larger images are refused before any worker starts.
 export const MAX_PIXELS = 8192 * 8192;

@@ -4,7 +4,8 @@
 //   node web/test/browser.mjs URL        (make check-web starts the server and runs this)
 import { chromium } from 'playwright-core';
 import { execFileSync, spawnSync } from 'node:child_process';
-import { mkdirSync, mkdtempSync, writeFileSync, copyFileSync, readFileSync, rmSync, cpSync } from 'node:fs';
+import { mkdirSync, mkdtempSync, writeFileSync, copyFileSync, readFileSync, rmSync } from 'node:fs';
+import { deflateSync, crc32 } from 'node:zlib';
 import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
 
@@ -24,6 +25,25 @@ function check(name, ok, detail = '') {
   console.log(`${ok ? 'ok  ' : 'FAIL'}  ${name}${!ok && detail ? `\n      ${detail}` : ''}`);
 }
 const same = (a, b) => JSON.stringify(a) === JSON.stringify(b);
+
+// A black 8-bit RGB PNG (it compresses to almost nothing, but decodes to w * h * 3 bytes).
+function blackPng(w, h) {
+  const chunk = (type, data) => {
+    const head = Buffer.alloc(8);
+    head.writeUInt32BE(data.length);
+    head.write(type, 4);
+    const crc = Buffer.alloc(4);
+    crc.writeUInt32BE(crc32(Buffer.concat([head.subarray(4), data])));
+    return Buffer.concat([head, data, crc]);
+  };
+  const ihdr = Buffer.alloc(13);
+  ihdr.writeUInt32BE(w, 0);
+  ihdr.writeUInt32BE(h, 4);
+  ihdr[8] = 8;
+  ihdr[9] = 2;
+  return Buffer.concat([Buffer.from([137, 80, 78, 71, 13, 10, 26, 10]), chunk('IHDR', ihdr),
+    chunk('IDAT', deflateSync(Buffer.alloc((w * 3 + 1) * h), { level: 9 })), chunk('IEND', Buffer.alloc(0))]);
+}
 
 function rtk(args, cwd = root) {
   const r = spawnSync(rtkBin, args, { cwd, encoding: 'utf8', maxBuffer: 1 << 28 });
@@ -186,6 +206,7 @@ try {
     const cmp = JSON.parse(rtk(['compare', saved, join(work, 'sr.png'), '--json']).out || '{}');
     check('Save PNG: the saved image has native rtk\'s pixels', cmp.max_diff === 0, JSON.stringify(cmp));
   }
+  await page.evaluate(() => { document.querySelector('aside').scrollTop = 0; document.activeElement?.blur(); });
   await page.screenshot({ path: join(shots, 'render.png') });
 
   // ---- a user's scene folder through the file input ----
@@ -230,6 +251,24 @@ try {
   check('the page is alive after bad input', (await render('cse457/assets/trace/simple/box.yaml')).hash.length === 64);
 
   // ---- too big for the page ----
+  {
+    // The mechanism of the page's 1024 MiB limit, at a cap of 64 MiB (?max-memory=64) so the
+    // test stays quick: two black 4096x3072 textures are 72 MiB of scene.
+    await page.goto(`${url}?max-memory=64`);
+    await page.waitForFunction(() => window.rtkApp?.ready && !rtkApp.busy, null, { timeout: 60000 });
+    const dir = folder('too_big', texture.replace('assets/texture-checkerboard.png', 'assets/big1.png').replace('assets/checkers.png', 'assets/big2.png')
+      .replace(/(    Sphere:\n[\s\S]*?)Color Map: ""\n(\s*)Use Texture: false/, '$1Color Map: Checkers Texture\n$2Use Texture: true'), {});
+    writeFileSync(join(dir, 'assets/big1.png'), blackPng(4096, 3072));
+    copyFileSync(join(dir, 'assets/big1.png'), join(dir, 'assets/big2.png'));
+    const got = await openFolder(dir);
+    const native = rtk(['render', 'too_big/scene.yaml', '--hash', '--quiet', '--max-memory', '64M'], work);
+    const text = await page.textContent('#error');
+    check(`a scene over the page's memory says so with native's line (exit ${native.rc})`,
+      native.rc === 5 && /too big for the page's memory/.test(text) && got.error === native.err.replaceAll(work, '') && !(await page.evaluate(() => rtkApp.renderDone)),
+      `page: ${text}\n      native: ${native.err}`);
+    await page.goto(url);
+    await page.waitForFunction(() => window.rtkApp?.ready && !rtkApp.busy, null, { timeout: 60000 });
+  }
   {
     const got = await render('cse457/assets/trace/simple/box.yaml', { width: 16384, height: 16384 });
     const text = await page.textContent('#error');

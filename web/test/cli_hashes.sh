@@ -16,13 +16,13 @@ while read -r scene opts; do
   [ "$path" = "$scene" ] && path=$here/$scene
   # shellcheck disable=SC2086
   native=$("$here/build/rtk" render "$path" --hash --quiet $opts)
-  start=$(date +%s.%N)
+  start=$(date +%s%N)
   # shellcheck disable=SC2086
   wasm=$(node --no-warnings --single-threaded "$here/web/test/wasi_run.mjs" "$here/build-web/rtk-cli.wasm" render "$path" --hash --quiet $opts) || wasm="(failed: $?)"
-  secs=$(echo "$(date +%s.%N) - $start" | bc)
+  ms=$((($(date +%s%N) - start) / 1000000))
   want=$(awk -v k="$scene${opts:+ $opts}" '{h=$1; $1=""; sub(/^ +/, ""); if ($0 == k) print h}' "$here/tests/golden/double.sha256")
   if [ "$wasm" = "$native" ] && [ "$native" = "$want" ]; then
-    pass=$((pass + 1)); printf 'same  %s  %s  (wasm %.1f s)\n' "$wasm" "$scene" "$secs"
+    pass=$((pass + 1)); printf 'same  %s  %s  (wasm %d.%03d s)\n' "$wasm" "$scene" $((ms / 1000)) $((ms % 1000))
   else
     fail=$((fail + 1)); printf 'DIFF  %s: wasm %s, native %s, golden %s\n' "$scene" "$wasm" "$native" "$want"
   fi
