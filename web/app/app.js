@@ -83,7 +83,10 @@ function fillSceneList() {
 }
 
 function markCurrent() {
-  document.querySelectorAll('.scene').forEach((b) => b.classList.toggle('current', b.dataset.path === app.scene));
+  document.querySelectorAll('.scene').forEach((b) => {
+    b.classList.toggle('current', b.dataset.path === app.scene);
+    if (b.dataset.path === app.scene) b.scrollIntoView({ block: 'nearest' });
+  });
 }
 
 // ---- files ----
