@@ -17,7 +17,10 @@ OPT ?= -O2
 # Determinism: no FMA contraction, no fast-math, no errno side path for sqrt.
 DET_FLAGS := -ffp-contract=off -fno-fast-math -fno-math-errno
 WARN := -Wall -Wextra -Wshadow -Wstrict-prototypes -Wvla
-BASE_CFLAGS := -std=c11 $(OPT) -g $(WARN) $(DET_FLAGS) $(REAL_FLAGS) $(EXTRA_CFLAGS)
+# RT_ASSERT (core/invariant.h) is off in rtk and everything users link; the tests link a
+# second core archive with it on, and ASSERTS=1 turns it on everywhere (the ASan build).
+ASSERT_FLAGS := $(if $(filter 1,$(ASSERTS)),-DRT_ASSERTS)
+BASE_CFLAGS := -std=c11 $(OPT) -g $(WARN) $(DET_FLAGS) $(REAL_FLAGS) $(ASSERT_FLAGS) $(EXTRA_CFLAGS)
 CORE_CFLAGS := $(BASE_CFLAGS) -ffreestanding -fno-builtin
 # The fixed core must not touch a floating-point register, where the compiler can say so.
 ifeq ($(RT_REAL),fixed)
@@ -37,6 +40,7 @@ PLATFORM_SRC := $(filter-out platform/cli/main.c,$(wildcard platform/*/*.c))
 TEST_SRC := $(wildcard tests/*.c)
 
 CORE_OBJ := $(CORE_SRC:%.c=$(BUILD)/%.o)
+CORE_ASSERT_OBJ := $(CORE_SRC:%.c=$(BUILD)/asserts/%.o)
 PLATFORM_OBJ := $(PLATFORM_SRC:%.c=$(BUILD)/%.o)
 TEST_OBJ := $(TEST_SRC:%.c=$(BUILD)/%.o)
 
@@ -46,6 +50,10 @@ all: $(BUILD)/rtk
 $(BUILD)/core/%.o: core/%.c
 	@mkdir -p $(@D)
 	$(CC) $(CORE_CFLAGS) -MMD -MP -c $< -o $@
+
+$(BUILD)/asserts/core/%.o: core/%.c
+	@mkdir -p $(@D)
+	$(CC) $(CORE_CFLAGS) -DRT_ASSERTS -MMD -MP -c $< -o $@
 
 $(BUILD)/platform/%.o: platform/%.c
 	@mkdir -p $(@D)
@@ -68,14 +76,19 @@ $(BUILD)/librtcore.a: $(CORE_OBJ)
 	@rm -f $@
 	ar rcs $@ $^
 
+$(BUILD)/librtcore-asserts.a: $(CORE_ASSERT_OBJ)
+	@rm -f $@
+	ar rcs $@ $^
+
 $(BUILD)/librtplatform.a: $(PLATFORM_OBJ)
 	@rm -f $@
 	ar rcs $@ $^
 
-$(BUILD)/rtk: $(BUILD)/platform/cli/main.o $(BUILD)/librtplatform.a $(BUILD)/librtcore.a
+# The invariant handler is linked as an object: nothing before the core archive asks for it.
+$(BUILD)/rtk: $(BUILD)/platform/cli/main.o $(BUILD)/platform/debug/invariant.o $(BUILD)/librtplatform.a $(BUILD)/librtcore.a
 	$(CC) $(OPT) -o $@ $^ $(LDLIBS)
 
-$(BUILD)/rtk-tests: $(TEST_OBJ) $(BUILD)/librtplatform.a $(BUILD)/librtcore.a
+$(BUILD)/rtk-tests: $(TEST_OBJ) $(BUILD)/platform/debug/invariant.o $(BUILD)/librtplatform.a $(BUILD)/librtcore-asserts.a
 	$(CC) $(OPT) -o $@ $^ $(LDLIBS) -lcriterion
 
 # The core's sources for RT_REAL, for the scripts that compile it themselves (targets/).
@@ -131,7 +144,7 @@ format-check:
 clean:
 	rm -rf build build-fixed build-baremetal demo.png
 
--include $(CORE_OBJ:.o=.d) $(PLATFORM_OBJ:.o=.d) $(TEST_OBJ:.o=.d) $(BUILD)/platform/cli/main.d
+-include $(CORE_OBJ:.o=.d) $(CORE_ASSERT_OBJ:.o=.d) $(PLATFORM_OBJ:.o=.d) $(TEST_OBJ:.o=.d) $(BUILD)/platform/cli/main.d
 
 # Optional fragments: fuzzers (fuzz/fuzz.mk) and benchmarks (bench/bench.mk).
 -include fuzz/fuzz.mk
