@@ -9,14 +9,14 @@
  * Camera rays are nearest-hit queries (rt_scene_nearest, as rtcIntersect1); shadow rays
  * are any-hit queries with t_max = the light distance (rt_scene_any, as rtcOccluded1),
  * which is what rtk's shader asks in opaque-shadow mode. */
+#include "load/scene_open.h"
+#include "rtk_rays.h"
+#include "thread/threads.h"
+#include "timing.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "parallel.h"
-#include "rtk_rays.h"
-#include "scene_build.h"
-#include "timing.h"
 
 typedef struct {
     const rt_scene *scene;
@@ -28,7 +28,7 @@ static void nearest_range(void *ctx, uint32_t begin, uint32_t end)
 {
     query_job *q = ctx;
     for (uint32_t i = begin; i < end; i++) {
-        rt_ray_setup rs = rt_ray_prepare(q->rays[i]);
+        rt_ray_setup rs = rt_intersect_prepare(q->rays[i]);
         rt_scene_hit h;
         q->hit[i] = rt_scene_nearest(q->scene, &rs, true, &h);
     }
@@ -38,7 +38,7 @@ static void any_range(void *ctx, uint32_t begin, uint32_t end)
 {
     query_job *q = ctx;
     for (uint32_t i = begin; i < end; i++) {
-        rt_ray_setup rs = rt_ray_prepare(q->rays[i]);
+        rt_ray_setup rs = rt_intersect_prepare(q->rays[i]);
         q->hit[i] = rt_scene_any(q->scene, &rs, true);
     }
 }
@@ -47,15 +47,16 @@ static rt_ray from_bench(const bench_ray *b)
 {
     rt_ray r;
     r.origin = rt_v3(rt_from_double(b->origin[0]), rt_from_double(b->origin[1]), rt_from_double(b->origin[2]));
-    r.direction = rt_v3(rt_from_double(b->direction[0]), rt_from_double(b->direction[1]), rt_from_double(b->direction[2]));
+    r.direction =
+        rt_v3(rt_from_double(b->direction[0]), rt_from_double(b->direction[1]), rt_from_double(b->direction[2]));
     r.t_min = rt_from_double(b->t_min);
     r.t_max = isinf(b->t_max) ? RT_REAL_MAX : rt_from_double(b->t_max);
     return r;
 }
 
 /* Times the queries `fn` makes on `count` rays (see bench_time_rays). */
-static bool time_queries(const char *name, bench_range_fn fn, const rt_scene *scene, const bench_ray *in, uint32_t count,
-                         uint32_t repeats)
+static bool time_queries(const char *name, bench_range_fn fn, const rt_scene *scene, const bench_ray *in,
+                         uint32_t count, uint32_t repeats)
 {
     rt_ray *rays = malloc((size_t)count * sizeof *rays + 1);
     uint8_t *hit = calloc((size_t)count + 1, 1);
@@ -78,13 +79,14 @@ static bool time_queries(const char *name, bench_range_fn fn, const rt_scene *sc
 static double time_build(const rt_scene *scene, uint32_t threads, uint32_t repeats, double *best_cpu)
 {
     size_t n = scene->prim_count;
-    size_t size = n * (2 * sizeof(rt_bvh_node) + sizeof(uint32_t) + sizeof(rt_aabb) + sizeof(rt_vec3)) + ((size_t)1 << 20);
+    size_t size =
+        n * (2 * sizeof(rt_bvh_node) + sizeof(uint32_t) + sizeof(rt_aabb) + sizeof(rt_vec3)) + ((size_t)1 << 20);
     void *memory = malloc(size);
     if (!memory) {
         fprintf(stderr, "rtk-bench: cannot allocate %zu MiB for the BVH build\n", size >> 20);
         return -1.0;
     }
-    rt_workers workers = rt_thread_workers(threads);
+    rt_workers workers = rtp_threads_workers(threads);
     double best = 0.0;
     for (uint32_t r = 0; r < repeats; r++) {
         fprintf(stderr, "  rtk %s: BVH build, %u thread%s, %u/%u\n", RT_REAL_NAME, threads, threads > 1 ? "s" : "",
@@ -144,22 +146,25 @@ static int usage(void)
 int main(int argc, char **argv)
 {
     if (argc < 4 || (strcmp(argv[1], "rays") && strcmp(argv[1], "run"))) return usage();
-    rt_build_options opt = {NULL, (size_t)4 << 30, 0, 0, -1, -1, 0};
+    rtp_scene_options opt = {NULL, (size_t)4 << 30, 0, 0, -1, -1, 0};
     uint32_t width = 1024, height = 1024, repeats = 3;
     for (int i = 4; i < argc; i++) {
         const char *val = i + 1 < argc ? argv[i + 1] : NULL;
         if (!val) return usage();
         bool good = false;
-        if (!strcmp(argv[i], "--assets")) opt.assets_root = val, good = true;
-        else if (!strcmp(argv[i], "--size")) good = sscanf(val, "%ux%u", &width, &height) == 2 && width && height;
-        else if (!strcmp(argv[i], "--repeats")) good = sscanf(val, "%u", &repeats) == 1 && repeats;
+        if (!strcmp(argv[i], "--assets"))
+            opt.assets_root = val, good = true;
+        else if (!strcmp(argv[i], "--size"))
+            good = sscanf(val, "%ux%u", &width, &height) == 2 && width && height;
+        else if (!strcmp(argv[i], "--repeats"))
+            good = sscanf(val, "%u", &repeats) == 1 && repeats;
         if (!good) return usage();
         i++;
     }
-    char err[RT_ERR_SIZE];
-    rt_built_scene built;
+    char err[RTP_ERR_SIZE];
+    rtp_scene built;
     double start = bench_now();
-    int rc = rt_scene_open(argv[2], &opt, &built, err, sizeof err);
+    int rc = rtp_scene_open(argv[2], &opt, &built, err, sizeof err);
     if (rc != 0) {
         fprintf(stderr, "rtk-bench: %s\n", err);
         return rc;
@@ -170,7 +175,9 @@ int main(int argc, char **argv)
     bool ok;
     if (!strcmp(argv[1], "rays")) {
         ok = bench_make_workload(scene, width, height, &w) && bench_workload_write(argv[3], &w);
-        if (ok) printf("triangles %u\nprimary_rays %u\nshadow_rays %u\n", w.triangle_count, w.primary_count, w.shadow_count);
+        if (ok)
+            printf("triangles %u\nprimary_rays %u\nshadow_rays %u\n", w.triangle_count, w.primary_count,
+                   w.shadow_count);
     } else {
         ok = bench_workload_read(argv[3], &w);
         if (ok && (w.triangle_count != scene->triangle_count || scene->prim_count != scene->triangle_count)) {
@@ -180,11 +187,12 @@ int main(int argc, char **argv)
         if (ok) {
             printf("kernel rtk-%s\nload_and_build_s %.4f\nthreads_all %u\n", RT_REAL_NAME, load_s, bench_cpu_count());
             print_memory(scene);
-            ok = time_builds(scene, repeats) && time_queries("primary", nearest_range, scene, w.primary, w.primary_count, repeats) &&
+            ok = time_builds(scene, repeats) &&
+                 time_queries("primary", nearest_range, scene, w.primary, w.primary_count, repeats) &&
                  time_queries("shadow", any_range, scene, w.shadow, w.shadow_count, repeats);
         }
     }
     bench_workload_free(&w);
-    rt_scene_close(&built);
+    rtp_scene_close(&built);
     return ok ? 0 : 1;
 }

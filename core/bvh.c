@@ -1,5 +1,5 @@
 /* Binned-SAH BVH build on the caller's workers, collapsed into a 4-wide tree
- * (bvh_collapse.c); see bvh.h (queries: bvh_query.c). */
+ * (bvh_collapse.c); see bvh.h (queries: scene_query.c). */
 #include "bvh.h"
 #include "bvh_binary.h"
 
@@ -41,7 +41,7 @@ static rt_aabb aabb_pad(rt_aabb b)
     return r;
 }
 
-rt_aabb rt_prim_bounds(const rt_scene *scene, uint32_t prim)
+rt_aabb rt_bvh_prim_bounds(const rt_scene *scene, uint32_t prim)
 {
     if (prim < scene->triangle_count) {
         const rt_triangle *tri = &scene->triangles[prim];
@@ -151,9 +151,9 @@ static void merge_bins(bins *into, const bins *later)
 }
 
 typedef struct {
-    int axis, bin;          /* refs in bins <= bin go left */
-    rt_real lo, scale;      /* the axis' binning */
-    rt_aabb left, right;    /* the children's bounds, unions of their bins */
+    int axis, bin;       /* refs in bins <= bin go left */
+    rt_real lo, scale;   /* the axis' binning */
+    rt_aabb left, right; /* the children's bounds, unions of their bins */
 } split;
 
 /* The cheapest split plane between bins of a task's references; false if a leaf is
@@ -324,7 +324,7 @@ static void bound_refs_job(void *arg, uint32_t index, uint32_t worker)
     uint32_t first = index * b->plan.chunk, end = first + min_u32(b->plan.chunk, b->scene->prim_count - first);
     rt_aabb bounds = rt_aabb_empty(), centroids = rt_aabb_empty();
     for (uint32_t i = first; i < end; i++) {
-        b->refs[i].bounds = rt_prim_bounds(b->scene, i);
+        b->refs[i].bounds = rt_bvh_prim_bounds(b->scene, i);
         b->refs[i].prim = i;
         bounds = aabb_union(bounds, b->refs[i].bounds);
         centroids = aabb_add_point(centroids, centroid_of(&b->refs[i]));
@@ -390,8 +390,10 @@ static uint32_t split_level(build *b, uint32_t count, uint32_t *subtrees, uint32
         (*inner)++;
         for (int k = 0; k < 2; k++) {
             const build_task *kid = &b->children[2 * t + k];
-            if (is_top(b, kid)) b->level[next++] = *kid;
-            else b->subtrees[(*subtrees)++] = *kid;
+            if (is_top(b, kid))
+                b->level[next++] = *kid;
+            else
+                b->subtrees[(*subtrees)++] = *kid;
         }
     }
     return next;
@@ -443,8 +445,10 @@ static uint32_t build_binary(build *b, uint32_t n)
     b->extent = aabb_magnitude(root.bounds);
     b->grid = rt_bound_grid(b->extent);
     uint32_t inner = 0, subtrees = 0, level = 0;
-    if (is_top(b, &root)) b->level[level++] = root;
-    else b->subtrees[subtrees++] = root;
+    if (is_top(b, &root))
+        b->level[level++] = root;
+    else
+        b->subtrees[subtrees++] = root;
     while (level > 0) level = split_level(b, level, &subtrees, &inner);
     rt_workers_run(b->workers, subtree_job, b, subtrees);
     for (uint32_t s = 0; s < subtrees; s++) inner += b->subtree_inner[s];
@@ -470,7 +474,7 @@ rt_status rt_bvh_build_planned(rt_scene *scene, rt_arena *arena, const rt_worker
     b.refs = rt_arena_alloc(arena, (size_t)n * sizeof *b.refs);
     b.chunk_bounds = rt_arena_alloc(arena, chunks * sizeof *b.chunk_bounds);
     b.chunk_centroids = rt_arena_alloc(arena, chunks * sizeof *b.chunk_centroids);
-    b.stacks = rt_arena_alloc(arena, (size_t)rt_worker_count(workers) * SUBTREE_STACK * sizeof *b.stacks);
+    b.stacks = rt_arena_alloc(arena, (size_t)rt_workers_count(workers) * SUBTREE_STACK * sizeof *b.stacks);
     if (!b.nodes || !b.refs || !b.chunk_bounds || !b.chunk_centroids || !b.stacks || !alloc_phases(&b, arena, n))
         return RT_ERR_NOMEM;
     uint32_t inner = build_binary(&b, n);

@@ -6,12 +6,15 @@
 #include "ray.h"
 #include "scene.h"
 
+/* The per-ray constants of the triangle and box tests. */
+rt_ray_setup rt_intersect_prepare(rt_ray ray);
+
 /* Which surface of a primitive was hit. */
 typedef enum { RT_PART_SURFACE, RT_PART_CAP_BOTTOM, RT_PART_CAP_TOP } rt_part;
 
 typedef struct {
     rt_real t;
-    rt_real b1, b2;  /* triangle: barycentric weights of v[1] and v[2] */
+    rt_real b1, b2; /* triangle: barycentric weights of v[1] and v[2] */
     rt_part part;
 } rt_prim_hit;
 

@@ -13,7 +13,7 @@ typedef struct {
     rt_ray_kind kind;
     uint32_t parent; /* index of the ray whose hit spawned it, or RT_NO_PARENT */
     uint32_t depth;
-    uint32_t light;  /* shadow rays: the light they test */
+    uint32_t light; /* shadow rays: the light they test */
     rt_ray ray;
     bool hit;
     rt_scene_hit scene_hit;
@@ -21,7 +21,7 @@ typedef struct {
     rt_vec3 normal_used; /* the shading normal turned towards the viewer */
     bool entering;       /* the viewer is on the shading normal's side */
     bool total_internal_reflection;
-    rt_vec3 emissive;    /* k_e at the hit */
+    rt_vec3 emissive; /* k_e at the hit */
     /* Shadow rays: the transmittance of the surface crossed (0 for opaque mode). */
     rt_vec3 transmittance;
     /* What the ray brings back: its colour (shadow rays: the attenuation so far). */
@@ -30,15 +30,15 @@ typedef struct {
 
 /* The terms of one light at one surface hit (format §9). */
 typedef struct {
-    uint32_t ray;   /* the ray whose hit this lights */
+    uint32_t ray; /* the ray whose hit this lights */
     uint32_t light;
-    rt_vec3 ambient;              /* k_d * ambient */
+    rt_vec3 ambient; /* k_d * ambient */
     rt_real n_dot_l, n_dot_h;
-    rt_vec3 diffuse;              /* k_d * N.L (0 when gated) */
-    rt_vec3 specular;             /* k_s * (N.H)^n_s (0 when gated) */
+    rt_vec3 diffuse;  /* k_d * N.L (0 when gated) */
+    rt_vec3 specular; /* k_s * (N.H)^n_s (0 when gated) */
     rt_real distance_attenuation;
     rt_vec3 shadow_attenuation;
-    rt_vec3 contribution;         /* ambient + shadow * A_dist * I_L * (diffuse + specular) */
+    rt_vec3 contribution; /* ambient + shadow * A_dist * I_L * (diffuse + specular) */
 } rt_light_record;
 
 typedef struct {
@@ -51,10 +51,10 @@ typedef struct {
 
 /* Recording, for the tracers; each is a no-op when log is NULL. */
 /* Starts a record for a ray; returns its index, or RT_NO_PARENT when not recorded. */
-uint32_t rt_log_begin(rt_ray_log *log, rt_ray_kind kind, uint32_t parent, uint32_t depth, const rt_ray *ray);
+uint32_t rt_raylog_begin(rt_ray_log *log, rt_ray_kind kind, uint32_t parent, uint32_t depth, const rt_ray *ray);
 /* The record of ray id, or NULL when there is none. */
-rt_ray_record *rt_log_ray(rt_ray_log *log, uint32_t id);
+rt_ray_record *rt_raylog_ray(rt_ray_log *log, uint32_t id);
 /* Appends the light terms of a recorded ray's hit. */
-void rt_log_light(rt_ray_log *log, const rt_light_record *rec);
+void rt_raylog_light(rt_ray_log *log, const rt_light_record *rec);
 
 #endif

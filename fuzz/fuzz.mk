@@ -22,10 +22,9 @@ FUZZ_VARIANTS ?= double $(if $(wildcard core/real_fixed.h),fixed)
 FUZZ_RUN_VARIANTS ?= $(FUZZ_VARIANTS)
 
 # The top-level flags without the backend switch; each variant adds its own.
-FUZZ_CORE_CFLAGS := $(filter-out -DRT_REAL_FIXED,$(CORE_CFLAGS)) $(FUZZ_SAN) -fsanitize=fuzzer-no-link
+FUZZ_CORE_CFLAGS := $(filter-out -DRT_REAL_FIXED,$(CORE_CFLAGS)) -DRT_ASSERTS $(FUZZ_SAN) -fsanitize=fuzzer-no-link
 FUZZ_PLATFORM_CFLAGS := $(filter-out -DRT_REAL_FIXED,$(PLATFORM_CFLAGS)) $(FUZZ_SAN) -fsanitize=fuzzer-no-link
 fuzz_real_flag = $(if $(filter fixed,$(1)),-DRT_REAL_FIXED)
-fuzz_core_src = $(filter-out core/real_%.c,$(wildcard core/*.c)) $(wildcard core/real_$(1)*.c)
 fuzz_targets = $(if $(filter fixed,$(1)),$(FUZZ_CORE_TARGETS),$(FUZZ_ALL))
 
 fuzz_bins = $(foreach v,$(1),$(addprefix $(FUZZ_BUILD)/$(v)/,$(call fuzz_targets,$(v))))
@@ -48,9 +47,9 @@ $(FUZZ_BUILD)/$(1)/platform/%.o: platform/%.c
 
 $(FUZZ_BUILD)/$(1)/fuzz/%.o: fuzz/%.c
 	@mkdir -p $$(@D)
-	$(FUZZ_CC) $(FUZZ_PLATFORM_CFLAGS) $(call fuzz_real_flag,$(1)) -Iplatform -MMD -MP -c $$< -o $$@
+	$(FUZZ_CC) $(FUZZ_PLATFORM_CFLAGS) $(call fuzz_real_flag,$(1)) -MMD -MP -c $$< -o $$@
 
-$(FUZZ_BUILD)/$(1)/librtcore.a: $(patsubst %.c,$(FUZZ_BUILD)/$(1)/%.o,$(call fuzz_core_src,$(1)))
+$(FUZZ_BUILD)/$(1)/librtcore.a: $(patsubst %.c,$(FUZZ_BUILD)/$(1)/%.o,$(call core_sources,$(1)))
 	@rm -f $$@
 	ar rcs $$@ $$^
 
@@ -90,7 +89,7 @@ ASAN_FLAGS := -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno
 
 # OPT reaches both the compile and the link lines of the top-level rules.
 check-asan: deps
-	$(MAKE) BUILD=$(ASAN_BUILD) OPT="$(ASAN_FLAGS)" $(ASAN_BUILD)/rtk $(ASAN_BUILD)/rtk-tests
+	$(MAKE) BUILD=$(ASAN_BUILD) OPT="$(ASAN_FLAGS)" ASSERTS=1 $(ASAN_BUILD)/rtk $(ASAN_BUILD)/rtk-tests
 	fuzz/sanitized.sh $(ASAN_BUILD)/sanitizer-reports $(ASAN_BUILD)/rtk-tests --jobs 2
 
 -include $(wildcard $(FUZZ_BUILD)/*/*/*.d)

@@ -1,8 +1,9 @@
 /* libFuzzer target: the Plane (the unit square in XY as two triangles sharing a
- * diagonal, rt_mesh_square) under a fuzzed transform. Besides the intersector
+ * diagonal, rt_builtin_mesh_square) under a fuzzed transform. Besides the intersector
  * invariants, rays through the shared diagonal check watertightness. */
 #include <math.h>
 
+#include "builtin_mesh.h"
 #include "check.h"
 #include "fixture.h"
 #include "oracle.h"
@@ -11,7 +12,7 @@
 static void check_ray(const rt_scene *scene, rt_ray ray)
 {
     const rt_object *obj = &scene->objects[0];
-    rt_ray_setup rs = rt_ray_prepare(ray);
+    rt_ray_setup rs = rt_intersect_prepare(ray);
     rt_scene_hit hit = {0}, brute = {0};
     bool found = rt_scene_nearest(scene, &rs, true, &hit), brute_found = rt_scene_nearest(scene, &rs, false, &brute);
     /* Both sides' hits must be real crossings before they can be compared. */
@@ -21,7 +22,8 @@ static void check_ray(const rt_scene *scene, rt_ray ray)
     if (found) {
         fz_check_t(hit.hit.t, ray.t_min, ray.t_max);
         FZ_CHECK(hit.prim == brute.prim && hit.hit.t == brute.hit.t, "BVH and brute force disagree on the hit");
-        FZ_CHECK(hit.hit.b1 >= RT_ZERO && hit.hit.b2 >= RT_ZERO && rt_to_double(hit.hit.b1) + rt_to_double(hit.hit.b2) <= 1 + 4 * FZ_EPS,
+        FZ_CHECK(hit.hit.b1 >= RT_ZERO && hit.hit.b2 >= RT_ZERO &&
+                     rt_to_double(hit.hit.b1) + rt_to_double(hit.hit.b2) <= 1 + 4 * FZ_EPS,
                  "barycentrics %.17g, %.17g outside the triangle", rt_to_double(hit.hit.b1), rt_to_double(hit.hit.b2));
         rt_surface s = rt_surface_at(scene, &ray, &hit);
         fz_check_unit(s.normal, "plane normal");
@@ -45,7 +47,7 @@ static void check_ray(const rt_scene *scene, rt_ray ray)
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     fz_bytes in = fz_bytes_of(data, size);
-    rt_mesh_desc square = rt_mesh_square();
+    rt_mesh_desc square = rt_builtin_mesh_square();
     rt_scene scene;
     fz_scene_one(&scene, RT_SHAPE_MESH, &square, fz_transform(&in));
     const rt_affine *world = &scene.objects[0].to_world;
@@ -58,8 +60,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             /* Kind 1: anywhere on the square (and a little beyond); else on the shared
              * diagonal from (-0.5, -0.5) to (0.5, 0.5), exact in object space. */
             rt_real u = rt_from_double(fz_range(&in, -0.55, 0.55));
-            rt_vec3 q = kind == 1 ? rt_v3(u, rt_from_double(fz_range(&in, -0.55, 0.55)), RT_ZERO) : rt_v3(u, u, RT_ZERO);
-            ray = fz_u8(&in) % 2 ? fz_ray_through(&in, rt_affine_point(world, q)) : fz_ray_axis(&in, rt_affine_point(world, q));
+            rt_vec3 q =
+                kind == 1 ? rt_v3(u, rt_from_double(fz_range(&in, -0.55, 0.55)), RT_ZERO) : rt_v3(u, u, RT_ZERO);
+            ray = fz_u8(&in) % 2 ? fz_ray_through(&in, rt_affine_point(world, q))
+                                 : fz_ray_axis(&in, rt_affine_point(world, q));
         }
         check_ray(&scene, ray);
     }

@@ -7,6 +7,7 @@
  * survive. */
 #include <string.h>
 
+#include "builtin_mesh.h"
 #include "check.h"
 #include "fixture.h"
 #include "render.h"
@@ -87,8 +88,8 @@ static void describe(source *s, storage *st, rt_scene_desc *d)
         m->index_of_refraction = real(s, 0.5, 2.5);
     }
     /* Meshes: the Cube, the Plane and a free mesh of up to 6 vertices and 6 triangles. */
-    st->meshes[0] = rt_mesh_cube();
-    st->meshes[1] = rt_mesh_square();
+    st->meshes[0] = rt_builtin_mesh_cube();
+    st->meshes[1] = rt_builtin_mesh_square();
     rt_mesh_desc *free_mesh = &st->meshes[2];
     free_mesh->vertex_count = 1 + fz_below(&s->in, 6);
     free_mesh->triangle_count = fz_below(&s->in, 7);
@@ -97,7 +98,8 @@ static void describe(source *s, storage *st, rt_scene_desc *d)
         st->normals[v] = vec(s, -1, 1);
         st->uvs[v] = (rt_vec2){real(s, -1, 2), real(s, -1, 2)};
     }
-    for (uint32_t k = 0; k < 3 * free_mesh->triangle_count; k++) st->indices[k] = index_or_bad(s, free_mesh->vertex_count);
+    for (uint32_t k = 0; k < 3 * free_mesh->triangle_count; k++)
+        st->indices[k] = index_or_bad(s, free_mesh->vertex_count);
     uint8_t attributes = fz_u8(&s->in);
     free_mesh->positions = st->positions;
     free_mesh->normals = attributes & 1 ? st->normals : NULL;

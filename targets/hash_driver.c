@@ -1,11 +1,11 @@
 /* Renders a scene blob (made by `rtk pack`) with nothing but the core and prints its
  * render hash. Built for every compiler, optimisation level and CPU of the determinism
  * matrix (targets/determinism.sh); it needs only a C library to read the file. */
-#include <stdio.h>
-#include <stdlib.h>
 #include "blob.h"
 #include "render.h"
 #include "sha256.h"
+#include <stdio.h>
+#include <stdlib.h>
 
 static uint8_t *read_file(const char *path, size_t *size)
 {
@@ -59,7 +59,7 @@ int main(int argc, char **argv)
     rt_tracer tracer = {&scene, true, NULL};
     rt_render_region(&tracer, 0, 0, w, h, rgb);
     uint8_t digest[32];
-    rt_render_hash(rgb, w, h, digest);
+    rt_sha256_ppm(rgb, w, h, digest);
     for (int i = 0; i < 32; i++) printf("%02x", digest[i]);
     printf("\n");
     free(rgb);

@@ -1,12 +1,12 @@
 /* Unit tests of the ray-primitive intersectors (core/intersect.c). */
+#include "intersect.h"
 #include <criterion/criterion.h>
 #include <math.h>
-#include "intersect.h"
 
 static rt_ray_setup setup(rt_vec3 o, rt_vec3 d)
 {
     rt_ray r = {o, rt_v3_normalize(d), RT_HIT_EPSILON, RT_REAL_MAX};
-    return rt_ray_prepare(r);
+    return rt_intersect_prepare(r);
 }
 
 Test(intersect, sphere_front_and_inside)

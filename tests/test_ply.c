@@ -1,6 +1,6 @@
 /* PLY reader: the corpus meshes, the three encodings of one mesh, header variants,
  * fan triangulation, degenerate triangles, and a catalogue of hostile files. */
-#include "ply.h"
+#include "load/ply.h"
 #include "tmpdir.h"
 
 #include <criterion/criterion.h>
@@ -14,15 +14,9 @@
 
 static char dir[64];
 
-static void setup(void)
-{
-    cr_assert(tmpdir_make(dir, sizeof dir, "ply"), "cannot create a scratch folder");
-}
+static void setup(void) { cr_assert(tmpdir_make(dir, sizeof dir, "ply"), "cannot create a scratch folder"); }
 
-static void teardown(void)
-{
-    tmpdir_remove(dir);
-}
+static void teardown(void) { tmpdir_remove(dir); }
 
 TestSuite(ply, .init = setup, .fini = teardown);
 
@@ -53,8 +47,8 @@ typedef struct {
 
 static int type_size(const char *t)
 {
-    static const char *const names[] = {"char", "uchar", "int8", "uint8", "short", "ushort", "int16", "uint16",
-                                        "int", "uint", "int32", "uint32", "float", "float32", "double", "float64"};
+    static const char *const names[] = {"char", "uchar", "int8",  "uint8",  "short", "ushort",  "int16",  "uint16",
+                                        "int",  "uint",  "int32", "uint32", "float", "float32", "double", "float64"};
     static const int sizes[] = {1, 1, 1, 1, 2, 2, 2, 2, 4, 4, 4, 4, 4, 4, 8, 8};
     for (int i = 0; i < 16; i++)
         if (strcmp(t, names[i]) == 0) return sizes[i];
@@ -67,8 +61,10 @@ static void put_value(FILE *f, const char *format, const char *type, double d)
     int n = type_size(type);
     bool is_float = type[0] == 'f' || type[0] == 'd';
     if (strcmp(format, "ascii") == 0) {
-        if (is_float) fprintf(f, "%.17g ", n == 4 ? (double)(float)d : d);
-        else fprintf(f, "%lld ", (long long)d);
+        if (is_float)
+            fprintf(f, "%.17g ", n == 4 ? (double)(float)d : d);
+        else
+            fprintf(f, "%lld ", (long long)d);
         return;
     }
     uint64_t bits;
@@ -112,11 +108,11 @@ static const char *write_mesh(const char *name, const char *format, const prop *
     return path;
 }
 
-static rt_ply_mesh load(const char *path)
+static rtp_ply_mesh load(const char *path)
 {
-    rt_ply_mesh m;
+    rtp_ply_mesh m;
     char err[512];
-    cr_assert(rt_ply_read(path, &m, err, sizeof err), "%s", err);
+    cr_assert(rtp_ply_read(path, &m, err, sizeof err), "%s", err);
     return m;
 }
 
@@ -124,8 +120,8 @@ static rt_ply_mesh load(const char *path)
 static const prop full_props[] = {{"float", "x"},  {"float", "y"},  {"float", "z"}, {"float", "nx"},
                                   {"float", "ny"}, {"float", "nz"}, {"float", "u"}, {"float", "v"}};
 static const double full_values[] = {
-    0, 0, 0, 0, 0, 1, 0, 0,         1, 0, 0, 0, 0, 1, 1, 0,    1, 1, 0, 0, 0, 1, 1, 1,
-    0.5, 1.5, 0, 0, 0, 1, 0.5, 1.5, 0, 1, 0, 0, 0, 1, 0, 1,    0.1, -0.3, 2.7, 0.6, 0.8, 0, 0.25, 0.75,
+    0,   0,   0, 0, 0, 1, 0,   0,   1, 0, 0, 0, 0, 1, 1, 0, 1,   1,    0,   0,   0,   1, 1,    1,
+    0.5, 1.5, 0, 0, 0, 1, 0.5, 1.5, 0, 1, 0, 0, 0, 1, 0, 1, 0.1, -0.3, 2.7, 0.6, 0.8, 0, 0.25, 0.75,
 };
 static const int full_faces[] = {5, 0, 1, 2, 3, 4, 4, 0, 1, 5, 4, 3, 1, 2, 5};
 
@@ -150,16 +146,16 @@ Test(ply, every_corpus_mesh_loads_with_its_counts)
         {TRACE "trimeshes/table2.ply", 800 /* of 4320 */, 1440 - 240, true, false},
     };
     for (size_t i = 0; i < sizeof corpus / sizeof corpus[0]; i++) {
-        rt_ply_mesh m = load(corpus[i].path);
+        rtp_ply_mesh m = load(corpus[i].path);
         cr_expect_eq(m.vertex_count, corpus[i].vertices, "%s", corpus[i].path);
         cr_expect_eq(m.triangle_count, corpus[i].triangles, "%s", corpus[i].path);
         cr_expect_eq(m.normals != NULL, corpus[i].normals, "%s", corpus[i].path);
         cr_expect_eq(m.uvs != NULL, corpus[i].uvs, "%s", corpus[i].path);
         for (uint32_t t = 0; t < 3 * m.triangle_count; t++) cr_assert_lt(m.indices[t], m.vertex_count);
-        rt_mesh_desc d = rt_ply_view(&m);
+        rt_mesh_desc d = rtp_ply_view(&m);
         cr_expect_eq(d.positions, m.positions);
         cr_expect_eq(d.triangle_count, m.triangle_count);
-        rt_ply_free(&m);
+        rtp_ply_free(&m);
         cr_expect_null(m.positions);
     }
 }
@@ -167,7 +163,7 @@ Test(ply, every_corpus_mesh_loads_with_its_counts)
 Test(ply, ascii_floats_are_rounded_to_the_declared_float)
 {
     /* poly-sphere.ply line 2 of the body: "1.28465e-08 0.5 1.76816e-08 ... 0.1 0". */
-    rt_ply_mesh m = load(TRACE "simple/poly-sphere.ply");
+    rtp_ply_mesh m = load(TRACE "simple/poly-sphere.ply");
     cr_expect_eq(m.positions[1].x, (double)1.28465e-08f);
     cr_expect_eq(m.positions[1].y, 0.5);
     cr_expect_eq(m.normals[1].y, 1.0);
@@ -175,7 +171,7 @@ Test(ply, ascii_floats_are_rounded_to_the_declared_float)
     cr_expect_neq(m.uvs[1].u, 0.1);
     cr_expect_eq(m.indices[0], 1); /* first face: "3 1 11 12" */
     cr_expect_eq(m.indices[2], 12);
-    rt_ply_free(&m);
+    rtp_ply_free(&m);
 }
 
 /* ---- encodings and header variants ---- */
@@ -183,7 +179,7 @@ Test(ply, ascii_floats_are_rounded_to_the_declared_float)
 Test(ply, ascii_little_and_big_endian_give_identical_arrays)
 {
     static const char *const formats[] = {"ascii", "binary_little_endian", "binary_big_endian"};
-    rt_ply_mesh m[3];
+    rtp_ply_mesh m[3];
     for (int i = 0; i < 3; i++)
         m[i] = load(write_mesh(formats[i], formats[i], full_props, 8, full_values, 6, "uchar", "int", full_faces, 3));
     cr_assert_eq(m[0].vertex_count, 6);
@@ -200,7 +196,7 @@ Test(ply, ascii_little_and_big_endian_give_identical_arrays)
     }
     cr_expect_eq(m[0].positions[5].z, (double)2.7f);
     cr_expect_eq(m[2].uvs[3].v, 1.5);
-    for (int i = 0; i < 3; i++) rt_ply_free(&m[i]);
+    for (int i = 0; i < 3; i++) rtp_ply_free(&m[i]);
 }
 
 Test(ply, polygons_are_fan_triangulated)
@@ -208,30 +204,31 @@ Test(ply, polygons_are_fan_triangulated)
     static const char text[] = "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\n"
                                "property float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n"
                                "0 0 0\n1 0 0\n2 1 0\n1 2 0\n0 1 0\n3 3 1\n5 0 1 2 3 4\n4 0 1 5 4\n";
-    rt_ply_mesh m = load(put_text("fan.ply", text));
+    rtp_ply_mesh m = load(put_text("fan.ply", text));
     static const uint32_t fan[] = {0, 1, 2, 0, 2, 3, 0, 3, 4, 0, 1, 5, 0, 5, 4};
     cr_assert_eq(m.triangle_count, 5);
     cr_expect_arr_eq(m.indices, fan, sizeof fan);
     cr_expect_null(m.normals);
     cr_expect_null(m.uvs);
-    rt_ply_free(&m);
+    rtp_ply_free(&m);
 }
 
 Test(ply, every_scalar_type_and_alias_in_both_byte_orders)
 {
-    static const prop props[] = {{"char", "x"},     {"int16", "y"},   {"double", "z"},   {"uint8", "red"},
+    static const prop props[] = {{"char", "x"},      {"int16", "y"},   {"double", "z"},   {"uint8", "red"},
                                  {"ushort", "junk"}, {"uint", "more"}, {"float64", "nx"}, {"float32", "ny"},
                                  {"int32", "nz"},    {"uint16", "s"},  {"int8", "t"},     {"short", "q"}};
-    static const double values[] = {-128, -32768, 0.1, 255, 65535, 4294967295.0, 0.5, 0.25, -2, 65535, 127, 5,
-                                    127,  32767,  -1e300, 0, 0, 0, 0, 0, 7, 0, -128, 0,
-                                    1,    2,      3,  1, 1, 1, 1, 1, 1, 1, 1, 1};
+    static const double values[] = {
+        -128, -32768, 0.1, 255, 65535, 4294967295.0, 0.5, 0.25, -2, 65535, 127, 5, 127, 32767, -1e300, 0, 0,
+        0,    0,      0,   7,   0,     -128,         0,   1,    2,  3,     1,   1, 1,   1,     1,      1, 1,
+        1,    1};
     static const int faces[] = {3, 0, 1, 2};
     static const char *const formats[] = {"ascii", "binary_little_endian", "binary_big_endian"};
     static const char *const index_types[] = {"ushort", "uint32", "int8"};
     for (int i = 0; i < 3; i++) {
         char name[32];
         snprintf(name, sizeof name, "types%d.ply", i);
-        rt_ply_mesh m = load(write_mesh(name, formats[i], props, 12, values, 3, "int", index_types[i], faces, 1));
+        rtp_ply_mesh m = load(write_mesh(name, formats[i], props, 12, values, 3, "int", index_types[i], faces, 1));
         cr_expect_eq(m.positions[0].x, -128.0, "%s", formats[i]);
         cr_expect_eq(m.positions[0].y, -32768.0, "%s", formats[i]);
         cr_expect_eq(m.positions[0].z, 0.1, "%s", formats[i]);
@@ -244,7 +241,7 @@ Test(ply, every_scalar_type_and_alias_in_both_byte_orders)
         cr_expect_eq(m.uvs[0].v, 127.0, "%s", formats[i]);
         cr_expect_eq(m.uvs[1].v, -128.0, "%s", formats[i]);
         cr_expect_eq(m.triangle_count, 1);
-        rt_ply_free(&m);
+        rtp_ply_free(&m);
     }
 }
 
@@ -255,18 +252,18 @@ Test(ply, uv_aliases_and_partial_sets)
     static const int faces[] = {3, 0, 1, 2};
     for (int i = 0; i < 4; i++) {
         prop p[] = {{"float", "x"}, {"float", "y"}, {"float", "z"}, {"float", pairs[i][0]}, {"float", pairs[i][1]}};
-        rt_ply_mesh m = load(write_mesh("uv.ply", "binary_little_endian", p, 5, values, 3, "uchar", "uint", faces, 1));
+        rtp_ply_mesh m = load(write_mesh("uv.ply", "binary_little_endian", p, 5, values, 3, "uchar", "uint", faces, 1));
         cr_assert_not_null(m.uvs, "%s %s", pairs[i][0], pairs[i][1]);
         cr_expect_eq(m.uvs[0].u, 0.25);
         cr_expect_eq(m.uvs[1].v, 1.0);
-        rt_ply_free(&m);
+        rtp_ply_free(&m);
     }
     /* u without v, nx without nz: ignored rather than half-filled. */
     prop p[] = {{"float", "x"}, {"float", "y"}, {"float", "z"}, {"float", "u"}, {"float", "nx"}};
-    rt_ply_mesh m = load(write_mesh("uv.ply", "ascii", p, 5, values, 3, "uchar", "uint", faces, 1));
+    rtp_ply_mesh m = load(write_mesh("uv.ply", "ascii", p, 5, values, 3, "uchar", "uint", faces, 1));
     cr_expect_null(m.uvs);
     cr_expect_null(m.normals);
-    rt_ply_free(&m);
+    rtp_ply_free(&m);
 }
 
 Test(ply, element_order_unknown_elements_lists_comments_and_crlf)
@@ -283,7 +280,7 @@ Test(ply, element_order_unknown_elements_lists_comments_and_crlf)
         "0 3 2 1 3 0\r\n"
         "3 -1 -2 -3 0.5\r\n"
         "0 0 0 255 0\r\n1 2 9 9 1 0 0\r\n0 0 0 255 1\r\n  2   1   1 1 1 1 \t\r\n";
-    rt_ply_mesh m = load(put_text("order.ply", text));
+    rtp_ply_mesh m = load(put_text("order.ply", text));
     cr_assert_eq(m.vertex_count, 4);
     cr_assert_eq(m.triangle_count, 2);
     static const uint32_t tris[] = {0, 1, 2, 2, 1, 3};
@@ -293,7 +290,7 @@ Test(ply, element_order_unknown_elements_lists_comments_and_crlf)
     cr_expect_eq(m.positions[2].y, 1.0);
     cr_expect_eq(m.positions[3].z, 2.0);
     cr_expect_eq(m.positions[3].x, 1.0);
-    rt_ply_free(&m);
+    rtp_ply_free(&m);
 }
 
 Test(ply, degenerate_triangles_are_dropped)
@@ -303,21 +300,21 @@ Test(ply, degenerate_triangles_are_dropped)
                                "end_header\n0 0 0\n1 0 0\n0 1 0\n2 0 0\n0 0 0\n"
                                "3 0 1 2\n3 0 0 2\n3 0 1 3\n3 0 4 1\n4 2 1 0 0\n";
     /* kept: (0,1,2) and (2,1,0) of the quad; dropped: repeated index, collinear, coincident. */
-    rt_ply_mesh m = load(put_text("degenerate.ply", text));
+    rtp_ply_mesh m = load(put_text("degenerate.ply", text));
     static const uint32_t kept[] = {0, 1, 2, 2, 1, 0};
     cr_assert_eq(m.triangle_count, 2);
     cr_expect_arr_eq(m.indices, kept, sizeof kept);
-    rt_ply_free(&m);
+    rtp_ply_free(&m);
 }
 
 /* ---- hostile files ---- */
 
 static void expect_error(const char *path, const char *needle)
 {
-    rt_ply_mesh m;
+    rtp_ply_mesh m;
     char err[512];
     memset(&m, 0xab, sizeof m);
-    cr_assert_not(rt_ply_read(path, &m, err, sizeof err), "accepted, expected: %s", needle);
+    cr_assert_not(rtp_ply_read(path, &m, err, sizeof err), "accepted, expected: %s", needle);
     cr_expect_null(m.positions);
     cr_expect_null(m.indices);
     cr_expect_null(strchr(err, '\n'), "not one line: %s", err);
@@ -336,7 +333,9 @@ Test(ply, hostile_headers)
         const char *text, *error;
     } cases[] = {
         {"", "line 1: not a PLY file"},
-        {"\x7f" "ELF\x02\x01\x01\x00\x00\x00\n", "line 1: not a PLY file"},
+        {"\x7f"
+         "ELF\x02\x01\x01\x00\x00\x00\n",
+         "line 1: not a PLY file"},
         {"PLY\nformat ascii 1.0\n", "line 1: not a PLY file"},
         {HEAD XYZ "element face 1\n", "line 8: end of file before end_header"},
         {"ply\nformat ascii 2.0\n" XYZ FACE TRI "3 0 1 2\n", "line 2: expected 'format"},
@@ -351,19 +350,24 @@ Test(ply, hostile_headers)
         {HEAD "element vertex -3\n", "line 3: element count is not a non-negative integer"},
         {HEAD "element vertex 99999999999999999999999\n", "line 3: element count too large"},
         {HEAD XYZ "element vertex 3\n", "line 7: element vertex declared twice"},
-        {HEAD "element vertex 3\nproperty float x\nproperty float y\nproperty float x\n", "line 6: second property for x"},
+        {HEAD "element vertex 3\nproperty float x\nproperty float y\nproperty float x\n",
+         "line 6: second property for x"},
         {HEAD "element vertex 3\nproperty list uchar float x\n", "line 4: property x must be a scalar"},
         {HEAD XYZ "element face 1\nproperty int vertex_indices\n", "line 8: property vertex_indices must be a list"},
-        {HEAD XYZ "element face 1\nproperty list float int vertex_indices\n", "line 8: list count type must be an integer"},
-        {HEAD XYZ "element face 1\nproperty list uchar float vertex_indices\n", "line 8: vertex indices must be integers"},
-        {HEAD "element vertex 3\nproperty float x\nproperty float y\n" FACE TRI "3 0 1 2\n", "line 3: element vertex has no property z"},
+        {HEAD XYZ "element face 1\nproperty list float int vertex_indices\n",
+         "line 8: list count type must be an integer"},
+        {HEAD XYZ "element face 1\nproperty list uchar float vertex_indices\n",
+         "line 8: vertex indices must be integers"},
+        {HEAD "element vertex 3\nproperty float x\nproperty float y\n" FACE TRI "3 0 1 2\n",
+         "line 3: element vertex has no property z"},
         {HEAD FACE "3 0 1 2\n", "no element vertex"},
         {HEAD XYZ "end_header\n" TRI, "line 7: no element face with a vertex_indices list"},
         {HEAD "element vertex 4000000000\nproperty float x\nproperty float y\nproperty float z\n" FACE TRI,
          "line 3: element vertex declares 4000000000 entries but the file has room for at most"},
         {HEAD XYZ "element face 4000000000\nproperty list uchar int vertex_indices\nend_header\n" TRI,
          "line 7: element face declares 4000000000 entries"},
-        {HEAD "element vertex 4294967295\nproperty float x\nproperty float y\nproperty float z\n" FACE, "line 3: too many vertices"},
+        {HEAD "element vertex 4294967295\nproperty float x\nproperty float y\nproperty float z\n" FACE,
+         "line 3: too many vertices"},
         {HEAD "element a 1\nelement b 1\nelement c 1\nelement d 1\nelement e 1\nelement f 1\nelement g 1\n"
               "element h 1\nelement i 1\nelement j 1\nelement k 1\nelement l 1\nelement m 1\nelement n 1\n"
               "element o 1\nelement p 1\nelement q 1\n",
@@ -399,7 +403,8 @@ Test(ply, hostile_ascii_bodies)
         {HEAD XYZ FACE "0 0 0\n1 0 abc\n0 1 0\n3 0 1 2\n", "line 11: vertex 1 of 3: 'abc' is not a number"},
         {HEAD XYZ FACE "0 0 0\n1 0 0.5.5\n0 1 0\n3 0 1 2\n", "'0.5.5' is not a number"},
         {HEAD XYZ FACE "0 0 0\n1 0\n0 1 0\n3 0 1 2\n", "line 11: vertex 1 of 3: fewer values than the header declares"},
-        {HEAD XYZ FACE "0 0 0\n1 0 0 0\n0 1 0\n3 0 1 2\n", "line 11: vertex 1 of 3: more values than the header declares"},
+        {HEAD XYZ FACE "0 0 0\n1 0 0 0\n0 1 0\n3 0 1 2\n",
+         "line 11: vertex 1 of 3: more values than the header declares"},
         {HEAD XYZ FACE TRI "3 0 1\n", "line 13: face 0 of 1: fewer values"},
         {HEAD XYZ FACE TRI "3 0 1 2.0\n", "'2.0' is not an integer"},
         {HEAD XYZ FACE TRI "300 0 1 2\n", "300 out of range for uchar"},
@@ -408,7 +413,8 @@ Test(ply, hostile_ascii_bodies)
          "face 0 of 1: negative list count"},
         {HEAD XYZ FACE "0 0 0\n1 0 1234567890123456789012345678901234567890123456789012345678901234567890\n",
          "value too long to be a number"},
-        {HEAD XYZ FACE "garbage line here\nmore garbage\n\x01\x02\x03\n", "line 10: vertex 0 of 3: 'garbage' is not a number"},
+        {HEAD XYZ FACE "garbage line here\nmore garbage\n\x01\x02\x03\n",
+         "line 10: vertex 0 of 3: 'garbage' is not a number"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         char name[32];
@@ -443,10 +449,10 @@ static const char *at_byte(const char *header, size_t at, const char *rest)
 Test(ply, hostile_binary_bodies)
 {
     static const uint8_t tri[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 3, 0, 1, 2};
-    rt_ply_mesh m = load(put_binary("ok.ply", LE BXYZ BFACE, tri, sizeof tri));
+    rtp_ply_mesh m = load(put_binary("ok.ply", LE BXYZ BFACE, tri, sizeof tri));
     cr_expect_eq(m.triangle_count, 1);
     cr_expect_eq(m.positions[1].x, 1.0);
-    rt_ply_free(&m);
+    rtp_ply_free(&m);
     expect_error(put_binary("short.ply", LE BXYZ BFACE, tri, sizeof tri - 1),
                  at_byte(LE BXYZ BFACE, 12, "face 0 of 1: unexpected end of file"));
     static const uint8_t extra[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 3, 0, 1, 2, 9, 9};
@@ -474,22 +480,24 @@ Test(ply, hostile_binary_bodies)
     static const uint8_t huge_face[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0xff, 0xff, 0xff, 0xff, 0, 0, 0, 0, 1, 0, 0, 0};
     expect_error(put_binary("hugeface.ply", LE BXYZ UFACE, huge_face, sizeof huge_face),
                  at_byte(LE BXYZ UFACE, 21, "face 0 of 1: unexpected end of file"));
-    expect_error(put_binary("absurd.ply", LE "element vertex 4000000000\nproperty uchar x\nproperty uchar y\n"
-                                             "property uchar z\n" BFACE, tri, sizeof tri),
+    expect_error(put_binary("absurd.ply",
+                            LE "element vertex 4000000000\nproperty uchar x\nproperty uchar y\n"
+                               "property uchar z\n" BFACE,
+                            tri, sizeof tri),
                  "line 3: element vertex declares 4000000000 entries but the file has room for at most 4");
 }
 
 Test(ply, files_that_cannot_be_read)
 {
-    rt_ply_mesh m;
+    rtp_ply_mesh m;
     char err[256];
-    cr_assert_not(rt_ply_read("/nonexistent/mesh.ply", &m, err, sizeof err));
+    cr_assert_not(rtp_ply_read("/nonexistent/mesh.ply", &m, err, sizeof err));
     cr_expect_str_eq(err, "/nonexistent/mesh.ply: cannot open: No such file or directory");
-    cr_assert_not(rt_ply_read(dir, &m, err, sizeof err));
+    cr_assert_not(rtp_ply_read(dir, &m, err, sizeof err));
     cr_expect_not_null(strstr(err, "is a directory"), "%s", err);
     /* A tiny error buffer is filled, truncated, and terminated. */
     char small[8];
-    cr_assert_not(rt_ply_read("/nonexistent/mesh.ply", &m, small, sizeof small));
+    cr_assert_not(rtp_ply_read("/nonexistent/mesh.ply", &m, small, sizeof small));
     cr_expect_str_eq(small, "/nonexi");
 }
 
@@ -506,12 +514,13 @@ Test(ply, identical_vertices_are_joined)
     fputs("ply\nformat ascii 1.0\nelement vertex 7\nproperty float x\nproperty float y\nproperty float z\n"
           "property float nx\nproperty float ny\nproperty float nz\n"
           "element face 2\nproperty list uchar int vertex_indices\nend_header\n"
-          "0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n"   /* face 0 */
-          "1 0 0 0 0 1\n1 1 0 0 0 1\n0 1 0 0 0 1\n"   /* face 1 repeats two corners exactly */
-          "0 0 0 1 0 0\n"                              /* same position, other normal: kept */
-          "3 0 1 2\n3 3 4 5\n", f);
+          "0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n" /* face 0 */
+          "1 0 0 0 0 1\n1 1 0 0 0 1\n0 1 0 0 0 1\n" /* face 1 repeats two corners exactly */
+          "0 0 0 1 0 0\n"                           /* same position, other normal: kept */
+          "3 0 1 2\n3 3 4 5\n",
+          f);
     fclose(f);
-    rt_ply_mesh m = load(path);
+    rtp_ply_mesh m = load(path);
     cr_assert_eq(m.vertex_count, 5);
     cr_assert_eq(m.triangle_count, 2);
     uint32_t want[6] = {0, 1, 2, 1, 3, 2};
@@ -519,6 +528,6 @@ Test(ply, identical_vertices_are_joined)
     cr_assert_eq(m.positions[3].x, 1);
     cr_assert_eq(m.positions[3].y, 1);
     cr_assert_eq(m.normals[4].x, 1);
-    rt_ply_free(&m);
+    rtp_ply_free(&m);
     tmpdir_remove(scratch);
 }

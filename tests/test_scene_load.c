@@ -1,6 +1,6 @@
 /* The YAML scene loader: facts of the corpus scenes, the missing-asset errors, and
  * small hand-written scenes for defaults, quirks and malformed input. */
-#include "scene_load.h"
+#include "load/scene_load.h"
 #include "reference.h"
 #include "tmpdir.h"
 
@@ -12,17 +12,14 @@
 
 static char dir[64];
 static char scene_path[256];
-static char err[RT_ERR_SIZE];
-static rt_loaded_scene scene;
+static char err[RTP_ERR_SIZE];
+static rtp_loaded_scene scene;
 
-static void setup(void)
-{
-    cr_assert(tmpdir_make(dir, sizeof dir, "scene"), "cannot create a scratch folder");
-}
+static void setup(void) { cr_assert(tmpdir_make(dir, sizeof dir, "scene"), "cannot create a scratch folder"); }
 
 static void teardown(void)
 {
-    rt_scene_unload(&scene);
+    rtp_scene_unload(&scene);
     tmpdir_remove(dir);
 }
 
@@ -48,25 +45,25 @@ static const char *put_file(const char *rel, const char *text)
 /* Writes a scene to dir/rel and loads it into `scene`, the message (if any) in err. */
 static bool load_as(const char *rel, const char *yaml, const char *assets_root)
 {
-    rt_scene_unload(&scene);
+    rtp_scene_unload(&scene);
     snprintf(scene_path, sizeof scene_path, "%s", put_file(rel, yaml));
-    return rt_scene_load(scene_path, assets_root, &scene, err, sizeof err);
+    return rtp_scene_load(scene_path, assets_root, &scene, err, sizeof err);
 }
 
 static bool load(const char *yaml) { return load_as("scene.yaml", yaml, NULL); }
 
 static bool load_corpus(const char *rel)
 {
-    rt_scene_unload(&scene);
+    rtp_scene_unload(&scene);
     snprintf(scene_path, sizeof scene_path, "%s/%s", rt_test_trace_dir(), rel);
-    return rt_scene_load(scene_path, NULL, &scene, err, sizeof err);
+    return rtp_scene_load(scene_path, NULL, &scene, err, sizeof err);
 }
 
 /* Asserts that loading failed with exactly "<scene>:<line>:<col>: <message>" and left nothing behind. */
 static void expect_error(int line, int col, const char *message)
 {
-    static const rt_loaded_scene empty;
-    char want[RT_ERR_SIZE];
+    static const rtp_loaded_scene empty;
+    char want[RTP_ERR_SIZE];
     snprintf(want, sizeof want, "%s:%d:%d: %s", scene_path, line, col, message);
     cr_assert_str_eq(err, want);
     cr_assert(memcmp(&scene, &empty, sizeof scene) == 0, "a failed load must leave the scene empty");
@@ -246,20 +243,20 @@ Test(scene_load, revolution_texture_reports_the_missing_texture)
 
 /* ---- Hand-written scenes ---- */
 
-#define RED_MATERIAL                                                                                                   \
-    "Materials:\n"                                                                                                     \
-    "    Red:\n"                                                                                                       \
-    "        Shader: Blinn-Phong Shader\n"                                                                             \
-    "        Uniforms:\n"                                                                                              \
+#define RED_MATERIAL                       \
+    "Materials:\n"                         \
+    "    Red:\n"                           \
+    "        Shader: Blinn-Phong Shader\n" \
+    "        Uniforms:\n"                  \
     "            Diffuse: {Color: {A: 1, R: 0.75, G: 0.7, B: 0.12}}\n"
 
-#define ONE_SPHERE                                                                                                     \
-    "Root:\n"                                                                                                          \
-    "    Name: Root\n"                                                                                                 \
-    "    Components: {}\n"                                                                                             \
-    "    Children:\n"                                                                                                  \
-    "        -   Name: Ball\n"                                                                                         \
-    "            Components:\n"                                                                                        \
+#define ONE_SPHERE              \
+    "Root:\n"                   \
+    "    Name: Root\n"          \
+    "    Components: {}\n"      \
+    "    Children:\n"           \
+    "        -   Name: Ball\n"  \
+    "            Components:\n" \
     "                Sphere: {Material: Red}\n"
 
 Test(scene_load, minimal_scene_gets_the_default_camera)
@@ -504,21 +501,22 @@ Test(scene_load, lights_defaults_and_intensity_multiplier)
 
 Test(scene_load, numbers_in_any_spelling)
 {
-    cr_assert(load("Root:\n"
-                   "    Name: Root\n"
-                   "    Components:\n"
-                   "        Camera:\n"
-                   "            FOV: \"45\"\n"
-                   "            Render Width (px): 640.0\n"
-                   "            Render Height (px): 16384\n"
-                   "            Orthographic View Width: 1e1\n"
-                   "            Trace:\n"
-                   "                Shadows: 7\n"
-                   "                Samples Per Pixel: 9\n"
-                   "                Monte Carlo: 2\n"
-                   "                Focus Distance: {Interpolation: 0, FrameTimes: [0, 1], FrameValues: [-7.5e-09, 3]}\n"
-                   "                Maximum Recursion Depth: 0\n"),
-              "%s", err);
+    cr_assert(
+        load("Root:\n"
+             "    Name: Root\n"
+             "    Components:\n"
+             "        Camera:\n"
+             "            FOV: \"45\"\n"
+             "            Render Width (px): 640.0\n"
+             "            Render Height (px): 16384\n"
+             "            Orthographic View Width: 1e1\n"
+             "            Trace:\n"
+             "                Shadows: 7\n"
+             "                Samples Per Pixel: 9\n"
+             "                Monte Carlo: 2\n"
+             "                Focus Distance: {Interpolation: 0, FrameTimes: [0, 1], FrameValues: [-7.5e-09, 3]}\n"
+             "                Maximum Recursion Depth: 0\n"),
+        "%s", err);
     const rt_camera_desc *c = &scene.desc.camera;
     cr_expect_eq(c->fov_degrees, 45.0);
     cr_expect_eq(c->width, 640u);
@@ -650,8 +648,11 @@ Test(scene_load, bad_numbers_are_rejected)
         char yaml[512], message[256];
         snprintf(yaml, sizeof yaml, "Root:\n    Name: Root\n    Components:\n        Camera: {FOV: %s}\n", bad[i]);
         const char *shown = strcmp(bad[i], "''") ? bad[i] : NULL;
-        if (shown) snprintf(message, sizeof message, "Root/Components/Camera/FOV: expected a finite number, got '%s'", shown);
-        else snprintf(message, sizeof message, "Root/Components/Camera/FOV: expected a finite number, got an empty value");
+        if (shown)
+            snprintf(message, sizeof message, "Root/Components/Camera/FOV: expected a finite number, got '%s'", shown);
+        else
+            snprintf(message, sizeof message,
+                     "Root/Components/Camera/FOV: expected a finite number, got an empty value");
         expect_load_error(yaml, 4, 23, message);
     }
 }
@@ -711,8 +712,8 @@ Test(scene_load, references_to_undefined_names)
                       "        Uniforms:\n"
                       "            Diffuse: {Color Map: Marble, Use Texture: true}\n" ONE_SPHERE,
                       5, 34, "Materials/Red/Uniforms/Diffuse/Color Map: no texture named 'Marble' in Textures");
-    expect_load_error(RED_MATERIAL "Root: {Name: R, Components: {TriangleMesh: {Material: Red, Mesh: Pyramid}}}\n",
-                      6, 66, "Root/Components/TriangleMesh/Mesh: no mesh named 'Pyramid' in Meshes, and it is not 'Cube'");
+    expect_load_error(RED_MATERIAL "Root: {Name: R, Components: {TriangleMesh: {Material: Red, Mesh: Pyramid}}}\n", 6,
+                      66, "Root/Components/TriangleMesh/Mesh: no mesh named 'Pyramid' in Meshes, and it is not 'Cube'");
 }
 
 Test(scene_load, unsupported_components)
@@ -732,7 +733,7 @@ Test(scene_load, odd_documents)
                       "this node is reused through an alias; aliases are not supported");
 
     snprintf(scene_path, sizeof scene_path, "%s/absent.yaml", dir);
-    cr_assert_not(rt_scene_load(scene_path, NULL, &scene, err, sizeof err));
+    cr_assert_not(rtp_scene_load(scene_path, NULL, &scene, err, sizeof err));
     char want[512];
     snprintf(want, sizeof want, "%s: cannot open: No such file or directory", scene_path);
     cr_expect_str_eq(err, want);

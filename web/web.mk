@@ -15,7 +15,7 @@ WASI_CC := clang --target=wasm32-wasi
 # The native determinism flags (DET_FLAGS), the double build; no -g: the size is downloaded.
 WASM_OPT := -O2
 WASM_BASE := -std=c11 $(WASM_OPT) $(WARN) $(DET_FLAGS)
-WASM_CORE_CFLAGS := $(WASM_BASE) -ffreestanding -fno-builtin
+WASM_CORE_CFLAGS := $(WASM_BASE) -ffreestanding -fno-builtin -Iinclude
 WASM_LIB_CFLAGS := -std=gnu11 $(WASM_OPT) $(DET_FLAGS) -w
 WASM_LDFLAGS := -Wl,--max-memory=4294967296 -Wl,-z,stack-size=8388608 -Wl,--strip-debug
 
@@ -26,7 +26,7 @@ ZLIB_DIR := $(WEB_DEBSRC)/zlib-1.2.13.dfsg
 WEB_SOURCES_STAMP := $(WEB_DEBSRC)/.unpacked
 
 WASM_PLATFORM_CFLAGS := $(WASM_BASE) -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE \
-	-D_WASI_EMULATED_SIGNAL -D_WASI_EMULATED_GETPID -include web/wasm/wasi_compat.h -Icore -Iplatform \
+	-D_WASI_EMULATED_SIGNAL -D_WASI_EMULATED_GETPID -include web/wasm/wasi_compat.h -Iinclude -Icore -Iplatform \
 	-I$(YAML_DIR)/include -I$(SPNG_DIR)/spng -I$(ZLIB_DIR)
 WASM_LIBS := -lwasi-emulated-signal -lwasi-emulated-getpid
 
@@ -34,9 +34,9 @@ YAML_OBJ := $(patsubst %,$(WEB_BUILD)/lib/yaml/%.o,api dumper emitter loader par
 ZLIB_OBJ := $(patsubst %,$(WEB_BUILD)/lib/z/%.o,adler32 compress crc32 deflate inflate inffast inftrees trees uncompr zutil)
 SPNG_OBJ := $(WEB_BUILD)/lib/spng/spng.o
 
-WEB_CORE_SRC := $(filter-out core/real_%.c,$(wildcard core/*.c)) $(wildcard core/real_double*.c)
-# platform/parallel.c needs POSIX threads; wasm gets one thread (web/wasm/parallel_serial.c).
-WEB_PLATFORM_SRC := $(filter-out platform/main.c platform/parallel.c,$(wildcard platform/*.c))
+WEB_CORE_SRC := $(call core_sources,double)
+# platform/thread/threads.c needs POSIX threads; wasm gets one thread (web/wasm/parallel_serial.c).
+WEB_PLATFORM_SRC := $(filter-out platform/cli/main.c platform/thread/threads.c,$(wildcard platform/*/*.c))
 WEB_SHIM_SRC := web/wasm/parallel_serial.c web/wasm/realpath.c
 WEB_CORE_OBJ := $(WEB_CORE_SRC:%.c=$(WEB_BUILD)/%.o)
 WEB_PLATFORM_OBJ := $(WEB_PLATFORM_SRC:%.c=$(WEB_BUILD)/%.o) $(WEB_SHIM_SRC:%.c=$(WEB_BUILD)/%.o)
@@ -95,7 +95,7 @@ $(WEB_BUILD)/web/wasm/%.o: web/wasm/%.c | $(WEB_SOURCES_STAMP)
 # The rtk command itself, for node's WASI (web/test/cli_hashes.mjs checks it against build/rtk).
 web-cli: web-deps
 	$(MAKE) $(WEB_BUILD)/rtk-cli.wasm
-$(WEB_BUILD)/rtk-cli.wasm: $(WEB_BUILD)/platform/main.o $(WEB_ARCHIVES) web/web.mk
+$(WEB_BUILD)/rtk-cli.wasm: $(WEB_BUILD)/platform/cli/main.o $(WEB_ARCHIVES) web/web.mk
 	$(WASI_CC) $(WASM_OPT) $(WASM_LDFLAGS) -o $@ $(filter-out web/web.mk,$^) $(WASM_LIBS)
 
 # The browser's module: a WASI reactor exporting web/wasm/rtk_wasm*.c's functions.
@@ -143,7 +143,7 @@ check-web:
 	$(MAKE) web
 	web/test/check_web.sh
 
--include $(WEB_API_OBJ:.o=.d) $(WEB_CORE_OBJ:.o=.d) $(WEB_PLATFORM_OBJ:.o=.d) $(WEB_BUILD)/platform/main.d
+-include $(WEB_API_OBJ:.o=.d) $(WEB_CORE_OBJ:.o=.d) $(WEB_PLATFORM_OBJ:.o=.d) $(WEB_BUILD)/platform/cli/main.d
 
 web-clean:
 	rm -rf $(WEB_BUILD)

@@ -1,8 +1,8 @@
-/* platform/parallel.h for WebAssembly, where wasi-libc has no threads: one worker, the
+/* platform/thread/threads.h for WebAssembly, where wasi-libc has no threads: one worker, the
  * calling thread. The browser spreads a render over Web Workers instead (web/app). */
-#include "parallel.h"
+#include "thread/threads.h"
 
-uint32_t rt_thread_count(uint32_t requested)
+uint32_t rtp_threads_count(uint32_t requested)
 {
     (void)requested;
     return 1;
@@ -14,14 +14,14 @@ static void run_in_order(const rt_workers *w, rt_job_fn *fn, void *arg, uint32_t
     for (uint32_t i = 0; i < jobs; i++) fn(arg, i, 0);
 }
 
-rt_workers rt_thread_workers(uint32_t threads)
+rt_workers rtp_threads_workers(uint32_t threads)
 {
     (void)threads;
     rt_workers w = {1, run_in_order};
     return w;
 }
 
-bool rt_render_parallel(const rt_tracer *tr, const rt_parallel_options *opt, uint8_t *rgb)
+bool rtp_threads_render(const rt_tracer *tr, const rtp_threads_options *opt, uint8_t *rgb)
 {
     const rt_camera *cam = &tr->scene->camera;
     uint32_t tile = opt->tile_size ? opt->tile_size : 32;

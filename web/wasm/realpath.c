@@ -1,4 +1,4 @@
-/* realpath(3) for wasi-libc, which lacks it (platform/scene_load.c uses it to find the
+/* realpath(3) for wasi-libc, which lacks it (platform/load/scene_load.c uses it to find the
  * scene's folder). WASI file systems here have no symbolic links, so the path is made
  * absolute against the working directory and "." and ".." are removed lexically; like
  * realpath, it fails (ENOENT) when the path does not exist. */

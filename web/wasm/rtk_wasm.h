@@ -2,9 +2,9 @@
 #ifndef RTK_WASM_H
 #define RTK_WASM_H
 
-#include "scene_build.h"
+#include "load/scene_open.h"
 
 /* The scene rtk_open built: loader tables and all. */
-const rt_built_scene *rtk_wasm_scene(void);
+const rtp_scene *rtk_wasm_scene(void);
 
 #endif

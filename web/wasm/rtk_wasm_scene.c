@@ -1,20 +1,20 @@
 /* The open scene as the browser's 3D view draws it: objects, lights and camera as one
  * JSON document on stdout, and the world-space mesh triangles as arrays in memory. */
-#include <stdio.h>
-#include "json_out.h"
-#include "pixel_trace.h"
+#include "debug/json_out.h"
+#include "debug/pixel_trace.h"
 #include "rtk_wasm.h"
+#include <stdio.h>
 
 #define EXPORT(name) __attribute__((export_name(#name)))
 
 static void vec(const char *key, rt_vec3 v)
 {
     printf("\"%s\": [", key);
-    rt_json_number(stdout, v.x);
+    rtp_json_number(stdout, v.x);
     fputs(", ", stdout);
-    rt_json_number(stdout, v.y);
+    rtp_json_number(stdout, v.y);
     fputs(", ", stdout);
-    rt_json_number(stdout, v.z);
+    rtp_json_number(stdout, v.z);
     fputs("]", stdout);
 }
 
@@ -25,7 +25,10 @@ static void affine(const rt_affine *a)
     for (int r = 0; r < 3; r++)
         for (int c = 0; c < 4; c++) {
             if (r || c) fputs(", ", stdout);
-            rt_json_number(stdout, c < 3 ? a->linear.m[r][c] : r == 0 ? a->translation.x : r == 1 ? a->translation.y : a->translation.z);
+            rtp_json_number(stdout, c < 3    ? a->linear.m[r][c]
+                                    : r == 0 ? a->translation.x
+                                    : r == 1 ? a->translation.y
+                                             : a->translation.z);
         }
     fputs("]", stdout);
 }
@@ -35,14 +38,14 @@ static const char *name_of(char **names, uint32_t count, uint32_t i)
     return names && i < count && names[i] ? names[i] : "";
 }
 
-static void object(const rt_built_scene *b, uint32_t i)
+static void object(const rtp_scene *b, uint32_t i)
 {
     const rt_object *o = &b->scene.objects[i];
     static const char *kinds[] = {"sphere", "cylinder", "mesh"};
     printf("{\"index\": %u, \"kind\": \"%s\", \"node\": ", i, kinds[o->kind]);
-    rt_json_string(stdout, name_of(b->loaded.node_names, b->loaded.node_count, o->source));
+    rtp_json_string(stdout, name_of(b->loaded.node_names, b->loaded.node_count, o->source));
     fputs(", \"material\": ", stdout);
-    rt_json_string(stdout, name_of(b->loaded.material_names, b->scene.material_count, o->material));
+    rtp_json_string(stdout, name_of(b->loaded.material_names, b->scene.material_count, o->material));
     fputs(", ", stdout);
     vec("diffuse", b->scene.materials[o->material].diffuse.color);
     fputs(", ", stdout);
@@ -56,7 +59,7 @@ static void object(const rt_built_scene *b, uint32_t i)
 
 static void light(const rt_light *l, uint32_t i)
 {
-    printf("{\"index\": %u, \"kind\": \"%s\", ", i, rt_light_kind_name(l->kind));
+    printf("{\"index\": %u, \"kind\": \"%s\", ", i, rtp_pixel_trace_light_kind(l->kind));
     vec("position", l->position);
     fputs(", ", stdout);
     vec("direction", l->direction);
@@ -74,7 +77,7 @@ static void light(const rt_light *l, uint32_t i)
 /* {"objects": [...], "lights": [...], "camera": {...}, "triangle_count": N} on stdout. */
 EXPORT(rtk_scene_json) void rtk_scene_json(void)
 {
-    const rt_built_scene *b = rtk_wasm_scene();
+    const rtp_scene *b = rtk_wasm_scene();
     const rt_scene *s = &b->scene;
     fputs("{\"objects\": [", stdout);
     for (uint32_t i = 0; i < s->object_count; i++) {
@@ -96,11 +99,11 @@ EXPORT(rtk_scene_json) void rtk_scene_json(void)
     fputs(", ", stdout);
     vec("up", c->up);
     fputs(", \"tan_half_fov\": ", stdout);
-    rt_json_number(stdout, c->tan_half_fov);
+    rtp_json_number(stdout, c->tan_half_fov);
     fputs(", \"aspect\": ", stdout);
-    rt_json_number(stdout, c->aspect);
+    rtp_json_number(stdout, c->aspect);
     fputs(", \"ortho_width\": ", stdout);
-    rt_json_number(stdout, c->ortho_width);
+    rtp_json_number(stdout, c->ortho_width);
     printf(", \"perspective\": %s, \"width\": %u, \"height\": %u},\n", c->perspective ? "true" : "false", c->width,
            c->height);
     printf("\"vertex_count\": %u, \"triangle_count\": %u}\n", s->vertex_count, s->triangle_count);
