@@ -1,7 +1,9 @@
 /* Renders the scene blob linked into this program (made by `rtk pack`) and prints its
- * render hash, with the kernel alone: no C library at all. The program brings the three
- * functions the kernel may call (memcpy, memset, memmove), its entry point and a write to
- * standard output as a Linux system call (x86-64 and aarch64). Build: see examples.mk. */
+ * render hash, with the kernel alone: no C library at all. The program brings its entry
+ * point and a write to standard output as Linux system calls (x86-64 and aarch64); the
+ * three functions the kernel may call (memcpy, memset, memmove) come from the bare-metal
+ * board's targets/cortex-m/memory.c, plain C that serves any freestanding program.
+ * Build: see examples.mk. */
 #include <rtk.h>
 
 #if !defined(__linux__) || !(defined(__x86_64__) || defined(__aarch64__))
@@ -15,32 +17,6 @@ extern const uint8_t _binary_scene_rtscene_start[], _binary_scene_rtscene_end[];
 static uint8_t memory[64 << 20];
 #define MAX_PIXELS (512 * 512)
 static uint8_t rgb[MAX_PIXELS * 3];
-
-void *memcpy(void *dst, const void *src, size_t n)
-{
-    uint8_t *d = dst;
-    const uint8_t *s = src;
-    while (n--) *d++ = *s++;
-    return dst;
-}
-
-void *memmove(void *dst, const void *src, size_t n)
-{
-    uint8_t *d = dst;
-    const uint8_t *s = src;
-    if (d < s)
-        while (n--) *d++ = *s++;
-    else
-        while (n--) d[n] = s[n];
-    return dst;
-}
-
-void *memset(void *dst, int c, size_t n)
-{
-    uint8_t *d = dst;
-    while (n--) *d++ = (uint8_t)c;
-    return dst;
-}
 
 static long sys_write(int fd, const void *buf, size_t n)
 {
