@@ -51,11 +51,11 @@ static rt_vec3 shadow_attenuation(const rt_tracer *tr, rt_vec3 point, rt_vec3 to
 {
     const rt_scene *scene = tr->scene;
     rt_vec3 atten = rt_v3(RT_ONE, RT_ONE, RT_ONE);
-    uint32_t mode = scene->camera.trace.shadows;
-    if (mode == 0) return atten;
+    rt_shadow_mode mode = scene->camera.trace.shadows;
+    if (mode == RT_SHADOWS_NONE) return atten;
     /* Opaque shadows need only whether anything blocks (any hit), unless the debugger
      * records which hit did. */
-    if (mode == 1 && !tr->log) {
+    if (mode == RT_SHADOWS_OPAQUE && !tr->log) {
         rt_ray_setup rs = rt_intersect_prepare(rt_ray_make(point, to_light, distance));
         return rt_scene_any(scene, &rs, tr->use_bvh) ? rt_v3(RT_ZERO, RT_ZERO, RT_ZERO) : atten;
     }
@@ -74,8 +74,9 @@ static rt_vec3 shadow_attenuation(const rt_tracer *tr, rt_vec3 point, rt_vec3 to
             return atten;
         }
         rt_surface s = rt_surface_at(scene, &ray, &hit);
-        rt_vec3 kt = mode == 1 ? rt_v3(RT_ZERO, RT_ZERO, RT_ZERO)
-                               : rt_surface_channel(scene, &scene->materials[s.material].transmittance, s.uv);
+        rt_vec3 kt = mode == RT_SHADOWS_OPAQUE
+                         ? rt_v3(RT_ZERO, RT_ZERO, RT_ZERO)
+                         : rt_surface_channel(scene, &scene->materials[s.material].transmittance, s.uv);
         atten = rt_v3_mul(atten, kt);
         if (rec) {
             rec->hit = true;

@@ -3,6 +3,7 @@
 
 #include "cli/cli.h"
 #include "cli/exit_codes.h"
+#include "cli/version.h"
 #include "part/part_cut.h"
 #include "part/part_identity.h"
 #include <stdio.h>
@@ -17,7 +18,7 @@ int rtp_part_request_option(const char *cmd, int argc, char **argv, int *i, rtp_
     if (req->wanted) return -rtp_cli_usage_error(cmd, "give one --region or --part, not two: second is", arg);
     if (region && !rtp_part_parse_rect(val, &req->region))
         return -rtp_cli_usage_error(cmd, "expected X0,Y0,X1,Y1 with X0 < X1 and Y0 < Y1 after", arg);
-    if (!region && !rtp_part_parse_index(val, 16384, &req->index, &req->count))
+    if (!region && !rtp_part_parse_index(val, RT_MAX_IMAGE_SIDE, &req->index, &req->count))
         return -rtp_cli_usage_error(cmd, "expected I/N with 0 <= I < N <= 16384 after", arg);
     req->wanted = true;
     (*i)++;
@@ -61,7 +62,7 @@ int rtp_part_plan(const char *cmd, const char *scene_path, const rtp_scene *scen
 {
     char err[RTP_ERR_SIZE];
     memset(part, 0, sizeof *part);
-    int rc = rtp_part_identify(scene_path, scene, part, err, sizeof err);
+    int rc = rtp_part_identify(scene_path, rtp_version_line(), scene, part, err, sizeof err);
     if (rc != RTP_EXIT_OK) {
         fprintf(stderr, "rtk %s: %s\n", cmd, err);
         return rc;

@@ -5,6 +5,7 @@
 
 #include "cli/cli.h"
 #include "cli/exit_codes.h"
+#include "cli/version.h"
 #include "image/image.h"
 #include "part/part_cut.h"
 #include "part/part_file.h"
@@ -75,7 +76,7 @@ static int parse_args(int argc, char **argv, stitch_args *a)
             if (!val) return rtp_cli_usage_error("stitch", "missing folder after", arg);
             a->mode = MODE_MISSING, a->dir = val, i++;
         } else if (!strcmp(arg, "--tiles") || !strcmp(arg, "--parts")) {
-            if (!rtp_cli_parse_u32(val, 1, RTP_PART_MAX_SIDE, &a->tiles))
+            if (!rtp_cli_parse_u32(val, 1, RT_MAX_IMAGE_SIDE, &a->tiles))
                 return rtp_cli_usage_error("stitch", "expected 1..16384 after", arg);
             i++;
         } else if (!strcmp(arg, "--threads")) {
@@ -251,7 +252,8 @@ static int missing(const stitch_args *a)
     }
     rtp_part want = {0};
     char err[RTP_ERR_SIZE];
-    if (rc == RTP_EXIT_OK && (rc = rtp_part_identify(a->scene, &built, &want, err, sizeof err)) != RTP_EXIT_OK)
+    if (rc == RTP_EXIT_OK &&
+        (rc = rtp_part_identify(a->scene, rtp_version_line(), &built, &want, err, sizeof err)) != RTP_EXIT_OK)
         fprintf(stderr, "rtk stitch: %s\n", err);
     if (rc == RTP_EXIT_OK) rc = list_missing(a, &built, &want);
     rtp_part_free(&want);

@@ -95,8 +95,8 @@ bool rtp_part_parse_place(rtp_part *p, char *err, size_t err_size)
 {
     const char *frame = p->text[RTP_PART_FRAME], *region = p->text[RTP_PART_REGION], *index = p->text[RTP_PART_INDEX];
     uint32_t wh[2];
-    if (!numbers(frame, 'x', wh, 2) || wh[0] == 0 || wh[1] == 0 || wh[0] > RTP_PART_MAX_SIDE ||
-        wh[1] > RTP_PART_MAX_SIDE)
+    if (!numbers(frame, 'x', wh, 2) || wh[0] == 0 || wh[1] == 0 || wh[0] > RT_MAX_IMAGE_SIDE ||
+        wh[1] > RT_MAX_IMAGE_SIDE)
         return fail(err, err_size, "malformed '%s' text '%s'", rtp_part_keys[RTP_PART_FRAME], frame);
     p->width = wh[0], p->height = wh[1];
     if (!rtp_part_parse_rect(region, &p->region))

@@ -9,9 +9,6 @@
 #include <stddef.h>
 #include <stdint.h>
 
-/* The largest frame side, as for rtk render --width and the image files. */
-#define RTP_PART_MAX_SIDE 16384u
-
 /* The facts a part carries, each one PNG text chunk. Fields before RTP_PART_REGION name
  * the render (equal in every part of one frame); the others differ from part to part. */
 typedef enum {

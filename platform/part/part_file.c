@@ -117,7 +117,7 @@ static bool decode(FILE *f, rtp_part *p, uint8_t **rgb, char *err, size_t err_si
     }
     struct spng_ihdr ihdr;
     size_t len = 0;
-    int rc = spng_set_image_limits(ctx, RTP_PART_MAX_SIDE, RTP_PART_MAX_SIDE);
+    int rc = spng_set_image_limits(ctx, RT_MAX_IMAGE_SIDE, RT_MAX_IMAGE_SIDE);
     if (rc == 0) rc = spng_set_chunk_limits(ctx, RTP_PART_CHUNK_LIMIT, RTP_PART_CHUNK_LIMIT);
     /* A damaged text chunk is an error, not a chunk silently dropped. */
     if (rc == 0) rc = spng_set_crc_action(ctx, SPNG_CRC_ERROR, SPNG_CRC_ERROR);

@@ -2,7 +2,6 @@
 #include "part/part_identity.h"
 
 #include "cli/exit_codes.h"
-#include "cli/version.h"
 #include "sha256.h"
 #include <errno.h>
 #include <fcntl.h>
@@ -63,7 +62,8 @@ static int asset_digests(const rtp_loaded_scene *l, rtp_part *out, char *err, si
     return RTP_EXIT_OK;
 }
 
-int rtp_part_identify(const char *scene_path, const rtp_scene *scene, rtp_part *out, char *err, size_t err_size)
+int rtp_part_identify(const char *scene_path, const char *version, const rtp_scene *scene, rtp_part *out, char *err,
+                      size_t err_size)
 {
     char scene_hex[65], settings[64];
     if (!file_digest(scene_path, scene_hex, err, err_size)) return RTP_EXIT_INPUT;
@@ -74,9 +74,8 @@ int rtp_part_identify(const char *scene_path, const rtp_scene *scene, rtp_part *
     out->height = cam->height;
     int rc = asset_digests(&scene->loaded, out, err, err_size);
     if (rc == RTP_EXIT_OK &&
-        !(rtp_part_set(out, RTP_PART_VERSION, rtp_version_line()) &&
-          rtp_part_set(out, RTP_PART_BUILD, RTP_BUILD_NAME) && rtp_part_set(out, RTP_PART_SCENE, scene_hex) &&
-          rtp_part_set(out, RTP_PART_SETTINGS, settings)))
+        !(rtp_part_set(out, RTP_PART_VERSION, version) && rtp_part_set(out, RTP_PART_BUILD, RTP_BUILD_NAME) &&
+          rtp_part_set(out, RTP_PART_SCENE, scene_hex) && rtp_part_set(out, RTP_PART_SETTINGS, settings)))
         rc = RTP_EXIT_MEMORY;
     if (rc == RTP_EXIT_MEMORY) snprintf(err, err_size, "%s: out of memory describing the part", scene_path);
     return rc;
