@@ -5,6 +5,7 @@
 #include "cli/exit_codes.h"
 #include "cli/render_cmd.h"
 #include "cli/stitch_cmd.h"
+#include "cli/version.h"
 #include "image/image.h"
 #include "load/scene_open.h"
 #include "part/part_cut.h"
@@ -445,6 +446,30 @@ Test(stitch, refuses_a_part_of_another_build_or_version)
     expect_refusal("fixed.png: other build than ", P(0), P(1), fixed, P(3), NULL);
     forge(P(2), old, RTP_PART_VERSION, "rtk 0.4.0 (double build; gcc 12.2.0; commit 000000000000)", false);
     expect_refusal("old.png: other rtk version than ", P(0), P(1), old, P(3), NULL);
+}
+
+/* The version line as this rtk prints it with the compiler (or the commit) replaced. */
+static char *other_version(const char *compiler, const char *commit)
+{
+    const char *line = rtp_version_line(), *semi = strchr(line, ';'), *at = strstr(line, "; commit ");
+    cr_assert(semi && at && at > semi, "unexpected version line '%s'", line);
+    static char out[256];
+    snprintf(out, sizeof out, "%.*s; %s; commit %s", (int)(semi - line), line, compiler,
+             commit ? commit : at + strlen("; commit "));
+    return out;
+}
+
+Test(stitch, the_compiler_alone_does_not_make_another_render)
+{
+    good_parts();
+    const char *clang = file_in_dir("clang.png"), *commit = file_in_dir("commit.png");
+    forge(P(2), clang, RTP_PART_VERSION, other_version("clang 14.0.6", NULL), false);
+    char *out, *err;
+    cr_expect_eq(stitch_cmd(&out, &err, P(0), P(1), clang, P(3), "--hash", NULL), RTP_EXIT_OK, "%s", err);
+    free(out);
+    free(err);
+    forge(P(2), commit, RTP_PART_VERSION, other_version("clang 14.0.6", "0123456789ab)"), false);
+    expect_refusal("commit.png: other rtk version than ", P(0), P(1), commit, P(3), NULL);
 }
 
 Test(stitch, refuses_a_truncated_part)

@@ -6,8 +6,9 @@
 #include "part/part.h"
 
 /* True when part (read from file `name`) names the same render as `reference` (fields
- * RTP_PART_BUILD .. RTP_PART_FRAME); else false with e.g. "b.png: other settings than
- * a.png: 'depth=3 aa=1' vs 'depth=3 aa=0'" in err. */
+ * RTP_PART_BUILD .. RTP_PART_FRAME equal; the version lines may differ in the compiler
+ * only); else false with e.g. "b.png: other settings than a.png: 'depth=3 aa=1' vs
+ * 'depth=3 aa=0'" in err. */
 bool rtp_stitch_same_render(const rtp_part *part, const char *name, const rtp_part *reference,
                             const char *reference_name, char *err, size_t err_size);
 
