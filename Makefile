@@ -208,9 +208,11 @@ clean:
 
 -include $(CORE_OBJ:.o=.d) $(CORE_ASSERT_OBJ:.o=.d) $(LIB_PIC_OBJ:.o=.d) $(PLATFORM_OBJ:.o=.d) $(TEST_OBJ:.o=.d) $(BUILD)/platform/cli/main.d
 
-# Optional fragments: fuzzers (fuzz/fuzz.mk) and benchmarks (bench/bench.mk).
+# Optional fragments: fuzzers (fuzz/fuzz.mk), benchmarks (bench/bench.mk), distributed
+# rendering on GNU parallel and Slurm (dist/dist.mk).
 -include fuzz/fuzz.mk
 -include bench/bench.mk
+-include dist/dist.mk
 -include tests/valgrind.mk
 -include examples/examples.mk
 -include web/web.mk

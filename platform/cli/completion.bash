@@ -15,13 +15,13 @@ _rtk() {
         return
     fi
     case $prev in
-    --assets)
+    --assets | --missing)
         mapfile -t COMPREPLY < <(compgen -d -- "$cur")
         return ;;
     -o | --output | --diff | --svg | --junit | --write)
         mapfile -t COMPREPLY < <(compgen -f -- "$cur")
         return ;;
-    --width | --height | --depth | --aa | --spp | --threads | --tile | --max-memory | --pixel | --sample | --min-psnr | --max-diff)
+    --width | --height | --depth | --aa | --spp | --threads | --tile | --max-memory | --pixel | --sample | --min-psnr | --max-diff | --part | --region | --tiles | --parts)
         return ;;
     esac
     if [[ $cur == -* ]]; then
@@ -29,6 +29,7 @@ _rtk() {
     else
         case $cmd in
         compare) mapfile -t COMPREPLY < <(compgen -f -X '!*.@(png|ppm)' -- "$cur") ;;
+        stitch) mapfile -t COMPREPLY < <(compgen -f -X '!*.@(png|yaml|yml)' -- "$cur") ;;
         *) mapfile -t COMPREPLY < <(compgen -f -X '!*.@(yaml|yml|txt|sha256)' -- "$cur") ;;
         esac
         local d

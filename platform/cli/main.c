@@ -5,6 +5,7 @@
 #include "cli/info_cmd.h"
 #include "cli/pack_cmd.h"
 #include "cli/render_cmd.h"
+#include "cli/stitch_cmd.h"
 #include "cli/verify_cmd.h"
 #include "cli/version.h"
 #include <stdio.h>
@@ -22,6 +23,8 @@ static const char usage[] =
     "  debug SCENE.yaml --pixel X,Y   every ray behind one pixel (rtk debug --help)\n"
     "  info SCENE.yaml                what a scene holds and costs (rtk info --help)\n"
     "  pack SCENE.yaml -o OUT         the scene as one blob for bare-metal and cross builds\n"
+    "  stitch PART... -o OUT.png      the parts of a distributed render as one frame\n"
+    "                                 (rtk stitch --help)\n"
     "  verify MANIFEST                render hashes checked, as sha256sum -c (rtk verify --help)\n"
     "  --version                      version, build (double/fixed), compiler and commit\n"
     "\n"
@@ -49,6 +52,7 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "debug")) return rtp_cmd_debug(argc - 1, argv + 1);
     if (!strcmp(cmd, "info")) return rtp_cmd_info(argc - 1, argv + 1);
     if (!strcmp(cmd, "pack")) return rtp_cmd_pack(argc - 1, argv + 1);
+    if (!strcmp(cmd, "stitch")) return rtp_cmd_stitch(argc - 1, argv + 1);
     if (!strcmp(cmd, "verify")) return rtp_cmd_verify(argc - 1, argv + 1);
     fprintf(stderr, "rtk: unknown command '%s' (see rtk --help)\n", cmd);
     return RTP_EXIT_USAGE;

@@ -68,6 +68,7 @@ typedef struct {
     store *st;
     list names;                                /* char *, the Name of each enabled node: rtp_loaded_scene.node_names */
     list material_names, texture_names;        /* char *, by desc index */
+    list asset_paths;                          /* char *, each asset file read: rtp_loaded_scene.asset_paths */
     list textures, meshes, shaders, materials; /* the *_decl of the sections */
     uint32_t cube, square;                     /* desc.meshes index of the built-ins once used */
     bool have_camera;
@@ -596,6 +597,10 @@ static bool load_texture(loader *L, texture_decl *t)
     bool ok = asset_path(L, t->node, &path);
     if (ok && !rtp_image_read(path, &img, why, sizeof why))
         ok = rtp_yaml_fail(&L->y, rtp_yaml_get(&L->y, t->node, "Path"), "Path", "%s", why);
+    if (ok && !push_name(L, &L->asset_paths, path)) {
+        rtp_image_free(&img);
+        ok = false;
+    }
     free(path);
     if (!ok) return false;
     rtp_image *owned = push(L, &L->st->images, sizeof *owned);
@@ -624,7 +629,7 @@ static bool load_mesh(loader *L, mesh_decl *m)
     }
     if (!rtp_ply_read(m->resolved, &ply, why, sizeof why))
         return rtp_yaml_fail(&L->y, rtp_yaml_get(&L->y, m->node, "Path"), "Path", "%s", why);
-    rtp_ply_mesh *owned = push(L, &L->st->plys, sizeof *owned);
+    rtp_ply_mesh *owned = push_name(L, &L->asset_paths, m->resolved) ? push(L, &L->st->plys, sizeof *owned) : NULL;
     if (!owned) {
         rtp_ply_free(&ply);
         return false;
@@ -674,6 +679,8 @@ static void hand_over(loader *L, rtp_loaded_scene *out)
     out->node_count = L->names.count;
     out->material_names = L->material_names.data;
     out->texture_names = L->texture_names.data;
+    out->asset_paths = L->asset_paths.data;
+    out->asset_count = L->asset_paths.count;
     d->materials = st->materials.data;
     d->material_count = st->materials.count;
     d->textures = st->textures.data;
@@ -703,6 +710,7 @@ bool rtp_scene_load(const char *path, const char *assets_root, rtp_loaded_scene 
         rtp_loaded_scene partial = {.storage = L.st, .node_names = L.names.data, .node_count = L.names.count};
         free_names(L.material_names.data, L.material_names.count);
         free_names(L.texture_names.data, L.texture_names.count);
+        free_names(L.asset_paths.data, L.asset_paths.count);
         rtp_scene_unload(&partial);
     }
     for (uint32_t i = 0; i < L.meshes.count; i++) free(((mesh_decl *)L.meshes.data)[i].resolved);
@@ -728,5 +736,6 @@ void rtp_scene_unload(rtp_loaded_scene *scene)
         free(st);
     }
     free_names(scene->node_names, scene->node_count);
+    free_names(scene->asset_paths, scene->asset_count);
     memset(scene, 0, sizeof *scene);
 }
