@@ -88,6 +88,9 @@ $(WEB_BUILD)/core/%.o: core/%.c
 $(WEB_BUILD)/platform/%.o: platform/%.c | $(WEB_SOURCES_STAMP)
 	@mkdir -p $(@D)
 	$(WASI_CC) $(WASM_PLATFORM_CFLAGS) -MMD -MP -c $< -o $@
+# The commit names the wasm build as it does the native one, so their parts stitch together.
+$(WEB_BUILD)/platform/cli/version.o: $(BUILD)/commit.stamp
+$(WEB_BUILD)/platform/cli/version.o: WASM_PLATFORM_CFLAGS += -DRTK_COMMIT='"$(RTK_COMMIT)"'
 $(WEB_BUILD)/web/wasm/%.o: web/wasm/%.c | $(WEB_SOURCES_STAMP)
 	@mkdir -p $(@D)
 	$(WASI_CC) $(WASM_PLATFORM_CFLAGS) -MMD -MP -c $< -o $@
