@@ -53,6 +53,13 @@ static void check_tree(const rt_scene *s)
         for (int c = 0; c < RT_BVH_WIDTH; c++) {
             if (n->count[c] == RT_BVH_NO_CHILD) {
                 FZ_CHECK(c == RT_BVH_WIDTH - 1 || n->count[c + 1] == RT_BVH_NO_CHILD, "node %u skips slot %d", i, c);
+                /* The walks test unused slots like the others: their box must hold nothing. */
+                rt_aabb empty = rt_bvh_child_box(bvh, n, c);
+                FZ_CHECK(empty.lo.x == rt_bound_value(rt_bound_below(RT_REAL_MAX, bvh->grid), bvh->grid) &&
+                             empty.hi.x == rt_bound_value(rt_bound_above(rt_neg(RT_REAL_MAX), bvh->grid), bvh->grid) &&
+                             empty.lo.y == empty.lo.x && empty.lo.z == empty.lo.x && empty.hi.y == empty.hi.x &&
+                             empty.hi.z == empty.hi.x,
+                         "node %u: unused slot %d has a box", i, c);
                 continue;
             }
             rt_aabb box = rt_bvh_child_box(bvh, n, c);
