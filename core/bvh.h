@@ -41,9 +41,27 @@ rt_aabb rt_prim_bounds(const rt_scene *scene, uint32_t prim);
 /* Tests one primitive against the ray. */
 bool rt_prim_intersect(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs, rt_prim_hit *hit);
 
+/* Whether this build of the core has kernel k (the CPU must have its instructions too). */
+bool rt_kernel_compiled(rt_kernel k);
+/* Sets the BVH's kernel to k if the core has it; returns whether it did. */
+bool rt_bvh_set_kernel(rt_bvh *bvh, rt_kernel k);
+/* Whether the BVH's kernel traces the stream queries in packets. */
+bool rt_bvh_packets(const rt_bvh *bvh);
+
+/* Rays traced together in packets by the stream queries below. */
+#define RT_PACKET 8
+
 /* Nearest hit in (t_min, t_max); use_bvh = false tests every primitive (for checking). */
 bool rt_scene_nearest(const rt_scene *scene, const rt_ray_setup *rs, bool use_bvh, rt_scene_hit *out);
 /* Whether any primitive is hit in (t_min, t_max): true exactly when rt_scene_nearest finds a hit. */
 bool rt_scene_any(const rt_scene *scene, const rt_ray_setup *rs, bool use_bvh);
+
+/* The same queries for n rays at once, through the BVH: found[i] and out[i] are what
+ * rt_scene_nearest(scene, &rs[i], true, &out[i]) and rt_scene_any(scene, &rs[i], true)
+ * give, bit for bit. Rays that share a direction octant and axis permutation (a tile's
+ * camera rays, their shadow rays) are traced RT_PACKET at a time where the kernel has
+ * packets. */
+void rt_scene_nearest_stream(const rt_scene *scene, const rt_ray_setup *rs, uint32_t n, rt_scene_hit *out, bool *found);
+void rt_scene_any_stream(const rt_scene *scene, const rt_ray_setup *rs, uint32_t n, bool *found);
 
 #endif

@@ -2,7 +2,7 @@
  * children are tested in single precision, four per register, against bounds that make
  * the test conservative, and the walk keeps its state in registers. Rays it cannot take
  * (see float_slab_prepare) walk with the general test of bvh_slab.h. Included by
- * bvh_query.c only, after bvh_leaf.h. */
+ * bvh_query.c, the stream queries (bvh_stream.c) and the packet walks. */
 #ifndef RT_BVH_FLOAT_H
 #define RT_BVH_FLOAT_H
 
@@ -127,7 +127,7 @@ __attribute__((always_inline)) static inline float_entry float_descend(const rt_
  * is entered beyond that, so ties to a lower reference survive. An unused slot's box is
  * empty (lo = FLT_MAX, hi = -FLT_MAX: entered beyond where it is left), so no slot needs
  * a check of its count. */
-static bool float_walk(const rt_scene *scene, const rt_ray_setup *rs, const float_slab *f, bool any, rt_scene_hit *out)
+static inline bool float_walk(const rt_scene *scene, const rt_ray_setup *rs, const float_slab *f, bool any, rt_scene_hit *out)
 {
     const rt_bvh_node *nodes = scene->bvh.nodes;
     rt_vec3 d = rs->ray.direction;
@@ -173,6 +173,15 @@ static bool float_walk(const rt_scene *scene, const rt_ray_setup *rs, const floa
         } while (e.t > best);
     }
 }
+
+/* The packet walks (bvh_packet.h): rt_scene_nearest (any: rt_scene_any) for each of the
+ * n <= RT_PACKET rays rs[i], which share their direction's octant and axis permutation,
+ * into out[i] and found[i] (false on entry), for the rays the float bounds can take
+ * (float_slab_prepare); returns those as a bit set. */
+unsigned rt_bvh_packet_sse2(const rt_scene *scene, const rt_ray_setup *const *rs, uint32_t n, bool any,
+                            rt_scene_hit *out, bool *found);
+unsigned rt_bvh_packet_avx2(const rt_scene *scene, const rt_ray_setup *const *rs, uint32_t n, bool any,
+                            rt_scene_hit *out, bool *found);
 #else
 #define FLOAT_WALK 0
 #endif

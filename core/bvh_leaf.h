@@ -2,7 +2,7 @@
  * nearest hit with the tie rule of bvh.h. In the double build the triangles' edge
  * functions are first computed two at a time (vector_size(16) doubles: SSE2, NEON),
  * with exactly the scalar test's operations, so only triangles that test can hit take
- * the whole test. Included by bvh_query.c only. */
+ * the whole test. Included by bvh_query.c and the packet walks (bvh_packet.h). */
 #ifndef RT_BVH_LEAF_H
 #define RT_BVH_LEAF_H
 
@@ -38,16 +38,18 @@ __attribute__((always_inline)) static inline bool prim_intersect(const rt_scene 
                                       scene->positions[tri->v[2]], hit, kx, ky, kz);
 }
 
-/* Keeps prim's hit in *best if it is nearer, or as near and a lower reference. */
-__attribute__((always_inline)) static inline void consider(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs,
+/* Keeps prim's hit in *best if it is nearer, or as near and a lower reference; returns
+ * whether it did. */
+__attribute__((always_inline)) static inline bool consider(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs,
                                                            rt_scene_hit *best, bool *found, int kx, int ky, int kz)
 {
     rt_prim_hit h;
-    if (!prim_intersect(scene, prim, rs, &h, kx, ky, kz)) return;
-    if (*found && (h.t > best->hit.t || (h.t == best->hit.t && prim > best->prim))) return;
+    if (!prim_intersect(scene, prim, rs, &h, kx, ky, kz)) return false;
+    if (*found && (h.t > best->hit.t || (h.t == best->hit.t && prim > best->prim))) return false;
     best->hit = h;
     best->prim = prim;
     *found = true;
+    return true;
 }
 
 #if !defined(RT_REAL_FIXED) && defined(__GNUC__)
@@ -122,7 +124,7 @@ __attribute__((always_inline)) static inline bool leaf_loop(const rt_scene *scen
 /* The references prim_refs[first .. first + count), out of line so that the traversal
  * loop keeps its registers, with one copy of the loop per axis permutation; with `any`,
  * stops at the first hit. Returns *found. */
-__attribute__((noinline)) static bool visit_leaf(const rt_scene *scene, uint32_t first, uint32_t count,
+__attribute__((noinline, unused)) static bool visit_leaf(const rt_scene *scene, uint32_t first, uint32_t count,
                                                  const rt_ray_setup *rs, bool any, rt_scene_hit *best, bool *found)
 {
     bool swapped = rs->kx != (rs->kz + 1) % 3; /* see rt_ray_prepare */

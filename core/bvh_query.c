@@ -110,7 +110,8 @@ static bool walk(const rt_scene *scene, const rt_ray_setup *rs, bool any, rt_sce
 {
 #if FLOAT_WALK
     float_slab f;
-    if (scene->prim_count > 0 && float_slab_prepare(rs, scene->bvh.extent, &f)) return float_walk(scene, rs, &f, any, out);
+    if (scene->bvh.kernel != RT_KERNEL_PORTABLE && scene->prim_count > 0 && float_slab_prepare(rs, scene->bvh.extent, &f))
+        return float_walk(scene, rs, &f, any, out);
 #endif
     return nearest_bvh(scene, rs, any, out);
 }

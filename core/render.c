@@ -1,5 +1,6 @@
 /* Camera rays and pixel sampling; see render.h. */
 #include "render.h"
+#include "render_packet.h"
 #include "sampler.h"
 
 /* P - eye for the perspective camera's image-plane point (x, y): the image plane sits
@@ -78,6 +79,10 @@ uint8_t rt_color_to_byte(rt_real c)
 
 void rt_render_region(const rt_tracer *tr, uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1, uint8_t *rgb)
 {
+    if (rt_render_packets_apply(tr)) {
+        rt_render_region_packets(tr, x0, y0, x1, y1, rgb);
+        return;
+    }
     uint32_t width = tr->scene->camera.width;
     for (uint32_t row = y0; row < y1; row++)
         for (uint32_t col = x0; col < x1; col++) {

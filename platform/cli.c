@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "exit_codes.h"
+#include "kernel.h"
 
 bool rt_parse_u32(const char *s, uint32_t lo, uint32_t hi, uint32_t *out)
 {
@@ -73,6 +74,10 @@ int rt_parse_scene_option(const char *cmd, int argc, char **argv, int *i, rt_bui
         opt->assets_root = val;
     } else if (!strcmp(arg, "--max-memory")) {
         if (!rt_parse_bytes(val, &opt->max_memory)) return -rt_usage_error(cmd, "expected a size such as 512M after", arg);
+    } else if (!strcmp(arg, "--kernel")) {
+        if (!rt_kernel_parse(val, &opt->kernel)) return -rt_usage_error(cmd, "expected portable, sse2 or avx2 after", arg);
+        if (!rt_kernel_runs(opt->kernel)) return -rt_usage_error(cmd, "this CPU or build cannot run the kernel given by", arg);
+        opt->kernel_forced = true;
     } else {
         return 0;
     }

@@ -114,7 +114,7 @@ static int write_svg(const debug_args *a, const rt_pixel_trace *pt)
         fprintf(stderr, "rtk debug: %s: no memory for a %ux%u image\n", a->scene, img.width, img.height);
         return RT_EXIT_MEMORY;
     }
-    rt_tracer tracer = {scene, true, NULL};
+    rt_tracer tracer = {scene, true, NULL, NULL};
     rt_parallel_options popt = {0, 0, isatty(STDERR_FILENO) != 0, NULL};
     int rc = RT_EXIT_OK;
     char err[RT_ERR_SIZE];

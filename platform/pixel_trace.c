@@ -64,12 +64,12 @@ bool rt_pixel_trace_run(rt_pixel_trace *pt, const rt_built_scene *built, uint32_
         rt_pixel_trace_free(pt);
         return false;
     }
-    rt_tracer logged = {scene, true, &pt->log};
+    rt_tracer logged = {scene, true, &pt->log, NULL};
     if (sample == RT_PIXEL_ALL_SAMPLES) {
         pt->color = rt_render_pixel(&logged, x, y);
     } else {
         rt_render_sample(&logged, x, y, sample);
-        rt_tracer plain = {scene, true, NULL};
+        rt_tracer plain = {scene, true, NULL, NULL};
         pt->color = rt_render_pixel(&plain, x, y);
     }
     pt->rgb[0] = rt_color_to_byte(pt->color.x);

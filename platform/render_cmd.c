@@ -109,7 +109,7 @@ int rt_cmd_render(int argc, char **argv)
         rt_scene_close(&built);
         return RT_EXIT_MEMORY;
     }
-    rt_tracer tracer = {&built.scene, a.use_bvh, NULL};
+    rt_tracer tracer = {&built.scene, a.use_bvh, NULL, NULL};
     a.parallel.progress = !a.quiet && (a.force_progress || isatty(STDERR_FILENO));
     a.parallel.cancel = &interrupted;
     signal(SIGINT, on_signal);

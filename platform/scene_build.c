@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include "exit_codes.h"
+#include "kernel.h"
 #include "parallel.h"
 
 static void apply_overrides(rt_scene_desc *d, const rt_build_options *opt)
@@ -39,7 +40,10 @@ int rt_scene_open(const char *path, const rt_build_options *opt, rt_built_scene 
         rt_build_error be;
         rt_workers workers = rt_thread_workers(opt->threads);
         rt_status st = rt_scene_build(&out->loaded.desc, &out->arena, &workers, &out->scene, &be);
-        if (st == RT_OK) return RT_EXIT_OK;
+        if (st == RT_OK) {
+            rt_bvh_set_kernel(&out->scene.bvh, opt->kernel_forced ? opt->kernel : rt_kernel_best());
+            return RT_EXIT_OK;
+        }
         free(out->memory);
         out->memory = NULL;
         if (st == RT_ERR_NOMEM && size < opt->max_memory) {

@@ -13,6 +13,8 @@ typedef struct {
     int32_t depth;           /* -1: keep the file's Maximum Recursion Depth */
     int32_t aa;              /* -1: keep the file's Samples Per Pixel index */
     uint32_t threads;        /* for the BVH build; 0: one per online CPU */
+    bool kernel_forced;      /* run `kernel` (which must run here, see kernel.h), not the best */
+    rt_kernel kernel;
 } rt_build_options;
 
 typedef struct {

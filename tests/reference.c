@@ -25,7 +25,7 @@ bool rt_test_render(const char *scene_path, unsigned threads, bool use_bvh, rt_i
     out->width = built.scene.camera.width;
     out->height = built.scene.camera.height;
     out->rgb = calloc((size_t)out->width * out->height, 3);
-    rt_tracer tracer = {&built.scene, use_bvh, NULL};
+    rt_tracer tracer = {&built.scene, use_bvh, NULL, NULL};
     rt_parallel_options popt = {threads, 0, false, NULL};
     bool ok = out->rgb && rt_render_parallel(&tracer, &popt, out->rgb);
     rt_scene_close(&built);
