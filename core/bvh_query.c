@@ -1,4 +1,5 @@
-/* BVH queries: nearest and any hit along a ray, with the tie rule of bvh.h. */
+/* BVH queries: nearest and any hit along a ray, with the tie rule of bvh.h: the float walk
+ * (bvh_float.h) for the rays it takes, the general walk here for the others. */
 #include "bvh_slab.h"
 
 #include "bvh_leaf.h"
