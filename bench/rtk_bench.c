@@ -21,13 +21,13 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
-#include "cli.h"
-#include "kernel.h"
-#include "parallel.h"
+#include "cli/cli.h"
+#include "thread/kernel.h"
+#include "thread/threads.h"
 #include "results.h"
 #include "rtk_rays.h"
-#include "scene_build.h"
-#include "scene_stats.h"
+#include "load/scene_open.h"
+#include "debug/scene_stats.h"
 #include "timing.h"
 
 typedef struct {
@@ -42,7 +42,7 @@ static void nearest_range(void *ctx, uint32_t begin, uint32_t end)
 {
     query_job *q = ctx;
     for (uint32_t i = begin; i < end; i++) {
-        rt_ray_setup rs = rt_ray_prepare(q->rays[i]);
+        rt_ray_setup rs = rt_intersect_prepare(q->rays[i]);
         rt_scene_hit h;
         q->hit[i] = rt_scene_nearest(q->scene, &rs, true, &h);
         q->prim[i] = q->hit[i] ? h.prim : BENCH_MISS;
@@ -53,7 +53,7 @@ static void any_range(void *ctx, uint32_t begin, uint32_t end)
 {
     query_job *q = ctx;
     for (uint32_t i = begin; i < end; i++) {
-        rt_ray_setup rs = rt_ray_prepare(q->rays[i]);
+        rt_ray_setup rs = rt_intersect_prepare(q->rays[i]);
         q->hit[i] = rt_scene_any(q->scene, &rs, true);
     }
 }
@@ -68,7 +68,7 @@ static void packet_range(void *ctx, uint32_t begin, uint32_t end, bool any)
         rt_ray_setup rs[BENCH_PACKET];
         rt_scene_hit h[BENCH_PACKET];
         bool found[BENCH_PACKET];
-        for (uint32_t i = 0; i < n; i++) rs[i] = rt_ray_prepare(q->rays[ray[i]]);
+        for (uint32_t i = 0; i < n; i++) rs[i] = rt_intersect_prepare(q->rays[ray[i]]);
         if (any) rt_scene_any_stream(q->scene, rs, n, found);
         else rt_scene_nearest_stream(q->scene, rs, n, h, found);
         for (uint32_t i = 0; i < n; i++) {
@@ -147,7 +147,7 @@ static double time_build(const rt_scene *scene, uint32_t threads, uint32_t repea
 {
     size_t n = scene->prim_count;
     size_t size = n * (2 * sizeof(rt_bvh_node) + sizeof(uint32_t) + sizeof(rt_aabb) + sizeof(rt_vec3)) + ((size_t)1 << 20);
-    rt_workers workers = rt_thread_workers(threads);
+    rt_workers workers = rtp_threads_workers(threads);
     double best = 0.0;
     for (uint32_t r = 0; r < repeats; r++) {
         fprintf(stderr, "  rtk %s: BVH build, %u thread%s, %u/%u\n", RT_REAL_NAME, threads, threads > 1 ? "s" : "",
@@ -194,8 +194,8 @@ static void print_tree(const rt_scene *s)
                   (double)s->triangle_count * sizeof(rt_triangle) + (double)s->object_count * sizeof(rt_object);
     double bvh = (double)s->bvh.node_count * sizeof(rt_bvh_node) + (double)s->prim_count * sizeof(uint32_t);
     printf("vertices %u\ntriangles %u\nbvh_nodes %u\nbvh_depth %u\nsah_cost %.2f\nkernel_name %s\n", s->vertex_count,
-           s->triangle_count, s->bvh.node_count, s->bvh.depth, rt_bvh_sah_cost(&s->bvh, s->prim_count),
-           rt_kernel_name(s->bvh.kernel));
+           s->triangle_count, s->bvh.node_count, s->bvh.depth, rtp_scene_stats_sah_cost(&s->bvh, s->prim_count),
+           rtp_kernel_name(s->bvh.kernel));
     printf("mesh_bytes_per_tri %.1f\nbvh_bytes_per_tri %.1f\nbytes_per_tri %.1f\n", mesh / tris, bvh / tris,
            (mesh + bvh) / tris);
 }
@@ -236,7 +236,7 @@ int main(int argc, char **argv)
         return bench_agree(argv[2], argv[3], argv[4], min);
     }
     if (argc < 4 || (strcmp(argv[1], "rays") && strcmp(argv[1], "run"))) return usage();
-    rt_build_options opt = rt_default_build_options();
+    rtp_scene_options opt = rtp_scene_default_options();
     uint32_t width = 1024, height = 1024, repeats = 3;
     const char *results = NULL;
     for (int i = 4; i < argc; i++) {
@@ -250,10 +250,10 @@ int main(int argc, char **argv)
         if (!good) return usage();
         i++;
     }
-    char err[RT_ERR_SIZE];
-    rt_built_scene built;
+    char err[RTP_ERR_SIZE];
+    rtp_scene built;
     double start = bench_now();
-    int rc = rt_scene_open(argv[2], &opt, &built, err, sizeof err);
+    int rc = rtp_scene_open(argv[2], &opt, &built, err, sizeof err);
     if (rc != 0) {
         fprintf(stderr, "rtk-bench: %s\n", err);
         return rc;
@@ -277,6 +277,6 @@ int main(int argc, char **argv)
         }
     }
     bench_workload_free(&w);
-    rt_scene_close(&built);
+    rtp_scene_close(&built);
     return ok ? 0 : 1;
 }

@@ -2,7 +2,7 @@
  * children are tested in single precision, four per register, against bounds that make
  * the test conservative, and the walk keeps its state in registers. Rays it cannot take
  * (see float_slab_prepare) walk with the general test of bvh_slab.h. Included by
- * bvh_query.c, the stream queries (bvh_stream.c) and the packet walks. */
+ * scene_query.c, the stream queries (bvh_stream.c) and the packet walks. */
 #ifndef RT_BVH_FLOAT_H
 #define RT_BVH_FLOAT_H
 

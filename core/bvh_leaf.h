@@ -2,7 +2,7 @@
  * nearest hit with the tie rule of bvh.h. In the double build the triangles' edge
  * functions are first computed two at a time (vector_size(16) doubles: SSE2, NEON),
  * with exactly the scalar test's operations, so only triangles that test can hit take
- * the whole test. Included by bvh_query.c and the packet walks (bvh_packet.h). */
+ * the whole test. Included by scene_query.c and the packet walks (bvh_packet.h). */
 #ifndef RT_BVH_LEAF_H
 #define RT_BVH_LEAF_H
 
@@ -127,7 +127,7 @@ __attribute__((always_inline)) static inline bool leaf_loop(const rt_scene *scen
 __attribute__((noinline, unused)) static bool visit_leaf(const rt_scene *scene, uint32_t first, uint32_t count,
                                                  const rt_ray_setup *rs, bool any, rt_scene_hit *best, bool *found)
 {
-    bool swapped = rs->kx != (rs->kz + 1) % 3; /* see rt_ray_prepare */
+    bool swapped = rs->kx != (rs->kz + 1) % 3; /* see rt_intersect_prepare */
     switch (rs->kz * 2 + swapped) {
     case 0: return leaf_loop(scene, first, count, rs, any, best, found, 1, 2, 0);
     case 1: return leaf_loop(scene, first, count, rs, any, best, found, 2, 1, 0);

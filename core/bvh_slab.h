@@ -1,7 +1,7 @@
-/* The per-ray box tests of the general BVH walk (bvh_query.c): a ray's slab set-up, and
+/* The per-ray box tests of the general BVH walk (scene_query.c): a ray's slab set-up, and
  * the test of a node's four children in the double build with SSE2, in the fixed build
  * with integer bounds, and one by one otherwise. (Most rays of the double build on x86
- * take the float walk of bvh_float.h instead.) Included by bvh_query.c only. */
+ * take the float walk of bvh_float.h instead.) Included by scene_query.c only. */
 #ifndef RT_BVH_SLAB_H
 #define RT_BVH_SLAB_H
 

@@ -4,7 +4,7 @@
  * by one. */
 #include "bvh_float.h"
 
-bool rt_kernel_compiled(rt_kernel k)
+bool rt_bvh_kernel_compiled(rt_kernel k)
 {
     return k == RT_KERNEL_PORTABLE || ((k == RT_KERNEL_SSE2 || k == RT_KERNEL_AVX2) && FLOAT_WALK);
 }

@@ -40,8 +40,8 @@ static void trace_batch(const rt_tracer *tr, const uint32_t *col, const uint32_t
     rt_tracer with = *tr;
     if (n == 0) return;
     for (uint32_t i = 0; i < n; i++) {
-        ray[i] = rt_pixel_ray(&scene->camera, col[s[i].pixel], row[s[i].pixel], s[i].sample);
-        rs[i] = rt_ray_prepare(ray[i]);
+        ray[i] = rt_camera_pixel_ray(&scene->camera, col[s[i].pixel], row[s[i].pixel], s[i].sample);
+        rs[i] = rt_intersect_prepare(ray[i]);
     }
     rt_scene_hit hit[BATCH];
     rt_scene_nearest_stream(scene, rs, n, hit, found);
@@ -51,7 +51,7 @@ static void trace_batch(const rt_tracer *tr, const uint32_t *col, const uint32_t
         for (int l = 0; l < RT_PRIMED_LIGHTS; l++) primed[i].shadow[l] = 0;
         /* The shading point as the trace will make it (no query: the hit is known). */
         with.primed = &primed[i];
-        if (found[i]) rt_shade_hit(&with, &ray[i], RT_RAY_CAMERA, RT_NO_PARENT, 0, &p[i]);
+        if (found[i]) rt_shading_hit(&with, &ray[i], RT_RAY_CAMERA, RT_NO_PARENT, 0, &p[i]);
     }
     uint32_t lights = scene->light_count < RT_PRIMED_LIGHTS ? scene->light_count : RT_PRIMED_LIGHTS;
     bool opaque = scene->camera.trace.shadows == 1;
@@ -59,8 +59,8 @@ static void trace_batch(const rt_tracer *tr, const uint32_t *col, const uint32_t
         uint32_t m = 0;
         for (uint32_t i = 0; i < n; i++) {
             rt_ray r;
-            if (!found[i] || !rt_light_shadow_ray(tr, l, &p[i], scene->lights[l].position, &r)) continue;
-            shadow[m] = rt_ray_prepare(r);
+            if (!found[i] || !rt_shading_shadow_ray(tr, l, &p[i], scene->lights[l].position, &r)) continue;
+            shadow[m] = rt_intersect_prepare(r);
             owner[m++] = i;
         }
         bool blocked[BATCH];
@@ -82,7 +82,7 @@ static rt_vec3 v3_div(rt_vec3 a, rt_real d) { return rt_v3(rt_div(a.x, d), rt_di
 void rt_render_region_packets(const rt_tracer *tr, uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1, uint8_t *rgb)
 {
     const rt_camera *cam = &tr->scene->camera;
-    uint32_t spp = rt_samples_per_pixel(cam);
+    uint32_t spp = rt_camera_samples(cam);
     for (uint32_t gy = y0; gy < y1; gy += GROUP_H)
         for (uint32_t gx = x0; gx < x1; gx += GROUP_W) {
             /* The group's pixels, in blocks of 4 x 2 so that neighbours share a packet. */
@@ -108,9 +108,9 @@ void rt_render_region_packets(const rt_tracer *tr, uint32_t x0, uint32_t y0, uin
             for (uint32_t i = 0; i < pixels; i++) {
                 rt_vec3 c = spp == 1 ? sum[i] : v3_div(sum[i], rt_from_int(spp));
                 uint8_t *px = rgb + ((size_t)row[i] * cam->width + col[i]) * 3;
-                px[0] = rt_color_to_byte(c.x);
-                px[1] = rt_color_to_byte(c.y);
-                px[2] = rt_color_to_byte(c.z);
+                px[0] = rt_render_color_byte(c.x);
+                px[1] = rt_render_color_byte(c.y);
+                px[2] = rt_render_color_byte(c.z);
             }
         }
 }

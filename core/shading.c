@@ -4,21 +4,21 @@
 /* The skeleton's refractive index of air (format §10.3). */
 #define RT_AIR_INDEX RT_C(1.0003)
 
-bool rt_nearest_hit(const rt_tracer *tr, const rt_ray *ray, rt_scene_hit *hit)
+bool rt_shading_nearest(const rt_tracer *tr, const rt_ray *ray, rt_scene_hit *hit)
 {
-    rt_ray_setup rs = rt_ray_prepare(*ray);
+    rt_ray_setup rs = rt_intersect_prepare(*ray);
     return rt_scene_nearest(tr->scene, &rs, tr->use_bvh, hit);
 }
 
-bool rt_shade_hit(const rt_tracer *tr, const rt_ray *ray, rt_ray_kind kind, uint32_t parent, uint32_t depth,
+bool rt_shading_hit(const rt_tracer *tr, const rt_ray *ray, rt_ray_kind kind, uint32_t parent, uint32_t depth,
                   rt_shading_point *p)
 {
     const rt_scene *scene = tr->scene;
-    p->ray = rt_log_begin(tr->log, kind, parent, depth, ray);
+    p->ray = rt_raylog_begin(tr->log, kind, parent, depth, ray);
     p->depth = depth;
     rt_scene_hit hit;
     const rt_primed *pr = depth == 0 && kind == RT_RAY_CAMERA ? tr->primed : NULL;
-    if (pr ? !pr->found : !rt_nearest_hit(tr, ray, &hit)) return false;
+    if (pr ? !pr->found : !rt_shading_nearest(tr, ray, &hit)) return false;
     if (pr) hit = pr->hit;
     rt_surface s = rt_surface_at(scene, ray, &hit);
     const rt_material *mat = &scene->materials[s.material];
@@ -27,13 +27,13 @@ bool rt_shade_hit(const rt_tracer *tr, const rt_ray *ray, rt_ray_kind kind, uint
     /* The shading normal is turned to face the viewer by its own sign (format §9). */
     p->entering = rt_v3_dot(s.normal, p->v) > RT_ZERO;
     p->n = p->entering ? s.normal : rt_v3_neg(s.normal);
-    p->ke = rt_channel_at(scene, &mat->emissive, s.uv);
-    p->kd = rt_channel_at(scene, &mat->diffuse, s.uv);
-    p->ks = rt_channel_at(scene, &mat->specular, s.uv);
-    p->kt = rt_channel_at(scene, &mat->transmittance, s.uv);
+    p->ke = rt_surface_channel(scene, &mat->emissive, s.uv);
+    p->kd = rt_surface_channel(scene, &mat->diffuse, s.uv);
+    p->ks = rt_surface_channel(scene, &mat->specular, s.uv);
+    p->kt = rt_surface_channel(scene, &mat->transmittance, s.uv);
     p->shininess = mat->shininess;
     p->index_of_refraction = mat->index_of_refraction;
-    rt_ray_record *rec = rt_log_ray(tr->log, p->ray);
+    rt_ray_record *rec = rt_raylog_ray(tr->log, p->ray);
     if (rec) {
         rec->hit = true;
         rec->scene_hit = hit;
@@ -62,7 +62,7 @@ static rt_vec3 shadow_attenuation(const rt_tracer *tr, rt_vec3 point, rt_vec3 to
     if (mode == 1 && !tr->log) {
         bool blocked = primed == 2;
         if (!primed) {
-            rt_ray_setup rs = rt_ray_prepare(rt_make_ray(point, to_light, distance));
+            rt_ray_setup rs = rt_intersect_prepare(rt_ray_make(point, to_light, distance));
             blocked = rt_scene_any(scene, &rs, tr->use_bvh);
         }
         return blocked ? rt_v3(RT_ZERO, RT_ZERO, RT_ZERO) : atten;
@@ -72,20 +72,20 @@ static rt_vec3 shadow_attenuation(const rt_tracer *tr, rt_vec3 point, rt_vec3 to
     /* Each crossing moves the origin forward by at least the hit epsilon; the bound
      * only guards against pathological scenes. */
     for (uint32_t crossing = 0; crossing < 1u << 16; crossing++) {
-        rt_ray ray = rt_make_ray(origin, to_light, remaining);
-        uint32_t id = rt_log_begin(tr->log, RT_RAY_SHADOW, parent, depth, &ray);
-        rt_ray_record *rec = rt_log_ray(tr->log, id);
+        rt_ray ray = rt_ray_make(origin, to_light, remaining);
+        uint32_t id = rt_raylog_begin(tr->log, RT_RAY_SHADOW, parent, depth, &ray);
+        rt_ray_record *rec = rt_raylog_ray(tr->log, id);
         if (rec) rec->light = light;
         rt_scene_hit hit;
         bool known = crossing == 0 && primed;
-        if (known ? primed == 1 : !rt_nearest_hit(tr, &ray, &hit)) {
+        if (known ? primed == 1 : !rt_shading_nearest(tr, &ray, &hit)) {
             if (rec) rec->color = atten;
             return atten;
         }
         if (known) hit = tr->primed->shadow_hit[light];
         rt_surface s = rt_surface_at(scene, &ray, &hit);
         rt_vec3 kt = mode == 1 ? rt_v3(RT_ZERO, RT_ZERO, RT_ZERO)
-                               : rt_channel_at(scene, &scene->materials[s.material].transmittance, s.uv);
+                               : rt_surface_channel(scene, &scene->materials[s.material].transmittance, s.uv);
         atten = rt_v3_mul(atten, kt);
         if (rec) {
             rec->hit = true;
@@ -126,18 +126,18 @@ static bool towards_light(const rt_light *l, const rt_shading_point *p, rt_vec3 
     return true;
 }
 
-bool rt_light_shadow_ray(const rt_tracer *tr, uint32_t index, const rt_shading_point *p, rt_vec3 position, rt_ray *out)
+bool rt_shading_shadow_ray(const rt_tracer *tr, uint32_t index, const rt_shading_point *p, rt_vec3 position, rt_ray *out)
 {
     rt_vec3 to_light;
     rt_real distance;
     if (tr->scene->camera.trace.shadows == 0 || !towards_light(&tr->scene->lights[index], p, position, &to_light, &distance))
         return false;
     if (!(rt_v3_dot(p->n, to_light) > RT_ZERO)) return false;
-    *out = rt_make_ray(p->point, to_light, distance);
+    *out = rt_ray_make(p->point, to_light, distance);
     return true;
 }
 
-rt_vec3 rt_light_shade(const rt_tracer *tr, uint32_t index, const rt_shading_point *p, rt_vec3 position, bool emits)
+rt_vec3 rt_shading_light(const rt_tracer *tr, uint32_t index, const rt_shading_point *p, rt_vec3 position, bool emits)
 {
     const rt_light *l = &tr->scene->lights[index];
     rt_vec3 black = rt_v3(RT_ZERO, RT_ZERO, RT_ZERO);
@@ -147,11 +147,11 @@ rt_vec3 rt_light_shade(const rt_tracer *tr, uint32_t index, const rt_shading_poi
     rt_vec3 to_light;
     rt_real distance;
     if (!emits) {
-        rt_log_light(tr->log, &rec);
+        rt_raylog_light(tr->log, &rec);
         return rec.contribution;
     }
     if (!towards_light(l, p, position, &to_light, &distance)) {
-        rt_log_light(tr->log, &rec);
+        rt_raylog_light(tr->log, &rec);
         return rec.contribution;
     }
     if (l->kind != RT_LIGHT_DIRECTIONAL) rec.distance_attenuation = distance_attenuation(l, distance);
@@ -165,16 +165,16 @@ rt_vec3 rt_light_shade(const rt_tracer *tr, uint32_t index, const rt_shading_poi
         rt_vec3 light = rt_v3_scale(rt_v3_mul(rec.shadow_attenuation, l->color), rec.distance_attenuation);
         rec.contribution = rt_v3_add(rec.ambient, rt_v3_mul(light, rt_v3_add(rec.diffuse, rec.specular)));
     }
-    rt_log_light(tr->log, &rec);
+    rt_raylog_light(tr->log, &rec);
     return rec.contribution;
 }
 
-rt_vec3 rt_mirror_direction(const rt_shading_point *p)
+rt_vec3 rt_shading_mirror(const rt_shading_point *p)
 {
     return rt_v3_normalize(rt_v3_sub(rt_v3_scale(p->n, rt_mul(RT_C(2.0), rt_v3_dot(p->v, p->n))), p->v));
 }
 
-bool rt_refraction_direction(const rt_shading_point *p, rt_vec3 *out)
+bool rt_shading_refraction(const rt_shading_point *p, rt_vec3 *out)
 {
     rt_real eta = p->entering ? rt_div(RT_AIR_INDEX, p->index_of_refraction)
                               : rt_div(p->index_of_refraction, RT_AIR_INDEX);

@@ -7,11 +7,11 @@
 #include <stdlib.h>
 #include <string.h>
 #include "bvh.h"
-#include "cli.h"
-#include "kernel.h"
+#include "cli/cli.h"
+#include "thread/kernel.h"
 #include "reference.h"
 #include "render.h"
-#include "scene_build.h"
+#include "load/scene_open.h"
 #include "sha256.h"
 
 static uint64_t lcg_state;
@@ -97,7 +97,7 @@ static void bundles(rt_ray_setup *rs)
                                                              next_range(-spread, spread))));
             if (i % 97 == 0) d.x = 0;
             rt_ray r = {o, d, i % 53 == 0 ? 0 : RT_HIT_EPSILON, i % 3 == 0 ? next_range(1, 30) : RT_REAL_MAX};
-            rs[i] = rt_ray_prepare(r);
+            rs[i] = rt_intersect_prepare(r);
         }
     }
 }
@@ -122,19 +122,19 @@ Test(packets, stream_queries_equal_one_ray_queries)
     cr_assert(hits > RAYS / 4 && hits < RAYS - RAYS / 8, "%u of %u rays hit", hits, RAYS);
     int kernels = 0;
     for (rt_kernel k = RT_KERNEL_PORTABLE; k <= RT_KERNEL_AVX2; k++) {
-        if (!rt_kernel_runs(k)) continue;
+        if (!rtp_kernel_runs(k)) continue;
         kernels++;
         cr_assert(rt_bvh_set_kernel(&s.bvh, k));
         memset(many, 0, sizeof many);
         rt_scene_nearest_stream(&s, rs, RAYS, many, many_found);
         rt_scene_any_stream(&s, rs, RAYS, many_any);
         for (uint32_t i = 0; i < RAYS; i++) {
-            cr_assert_eq(many_found[i], one_found[i], "%s, ray %u: nearest", rt_kernel_name(k), i);
-            cr_assert_eq(many_any[i], one_any[i], "%s, ray %u: any", rt_kernel_name(k), i);
+            cr_assert_eq(many_found[i], one_found[i], "%s, ray %u: nearest", rtp_kernel_name(k), i);
+            cr_assert_eq(many_any[i], one_any[i], "%s, ray %u: any", rtp_kernel_name(k), i);
             if (!one_found[i]) continue;
-            cr_assert_eq(many[i].prim, one[i].prim, "%s, ray %u: primitive %u, one ray %u", rt_kernel_name(k), i,
+            cr_assert_eq(many[i].prim, one[i].prim, "%s, ray %u: primitive %u, one ray %u", rtp_kernel_name(k), i,
                          many[i].prim, one[i].prim);
-            cr_assert(same_hit(&many[i].hit, &one[i].hit), "%s, ray %u: hit records differ", rt_kernel_name(k), i);
+            cr_assert(same_hit(&many[i].hit, &one[i].hit), "%s, ray %u: hit records differ", rtp_kernel_name(k), i);
         }
     }
     cr_assert_geq(kernels, 1);
@@ -147,21 +147,21 @@ static void render_hash(const char *name, rt_kernel k, uint32_t size, int32_t aa
 {
     char path[4096], err[1024];
     snprintf(path, sizeof path, "%s/%s", rt_test_trace_dir(), name);
-    rt_build_options opt = rt_default_build_options();
+    rtp_scene_options opt = rtp_scene_default_options();
     opt.width = opt.height = size;
     opt.aa = aa;
     opt.threads = 1;
     opt.kernel_forced = true;
     opt.kernel = k;
-    rt_built_scene b;
-    cr_assert_eq(rt_scene_open(path, &opt, &b, err, sizeof err), 0, "%s", err);
+    rtp_scene b;
+    cr_assert_eq(rtp_scene_open(path, &opt, &b, err, sizeof err), 0, "%s", err);
     cr_assert_eq(b.scene.bvh.kernel, k);
     uint8_t *rgb = calloc((size_t)size * size, 3);
     rt_tracer tr = {&b.scene, true, NULL, NULL};
     rt_render_region(&tr, 0, 0, size, size, rgb);
-    rt_render_hash(rgb, size, size, digest);
+    rt_sha256_ppm(rgb, size, size, digest);
     free(rgb);
-    rt_scene_close(&b);
+    rtp_scene_close(&b);
 }
 
 /* Coloured and opaque shadows, glass, a mirror, triangles and quadrics, at an odd size
@@ -176,10 +176,10 @@ Test(packets, renders_equal_the_pixel_path)
             uint8_t want[32], got[32];
             render_hash(scenes[i], RT_KERNEL_PORTABLE, 61, aa, want);
             for (rt_kernel k = RT_KERNEL_SSE2; k <= RT_KERNEL_AVX2; k++) {
-                if (!rt_kernel_runs(k)) continue;
+                if (!rtp_kernel_runs(k)) continue;
                 render_hash(scenes[i], k, 61, aa, got);
                 cr_assert(!memcmp(want, got, 32), "%s, aa %d, under %s: another image", scenes[i], aa,
-                          rt_kernel_name(k));
+                          rtp_kernel_name(k));
             }
         }
 }
