@@ -13,15 +13,15 @@
  * the single-ray queries again. Every timing runs with 1 and with all threads, driven by
  * the same loop as rtk's harness. Prints "key value" lines on stdout, progress on
  * stderr; --results writes each single ray's answer for `rtk-bench agree`. */
+#include "results.h"
+#include "timing.h"
+#include "workload.h"
 #include <embree3/rtcore.h>
 #include <math.h>
 #include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "results.h"
-#include "timing.h"
-#include "workload.h"
 #if defined(__SSE2__)
 #include <xmmintrin.h>
 #endif
@@ -77,8 +77,10 @@ static RTCScene new_scene(RTCDevice device, const bench_workload *w, enum RTCBui
     rtcSetSceneBuildQuality(scene, q);
     RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     rtcSetGeometryBuildQuality(g, q);
-    float *v = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), w->vertex_count);
-    unsigned *t = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), w->triangle_count);
+    float *v =
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), w->vertex_count);
+    unsigned *t =
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), w->triangle_count);
     for (size_t i = 0; i < 3 * (size_t)w->vertex_count; i++) v[i] = (float)w->positions[i];
     for (size_t i = 0; i < 3 * (size_t)w->triangle_count; i++) t[i] = w->indices[i];
     rtcCommitGeometry(g);
@@ -191,8 +193,10 @@ static void packet_range(void *ctx, uint32_t begin, uint32_t end, bool any)
             rh.hit.geomID[l] = RTC_INVALID_GEOMETRY_ID;
             rh.hit.instID[0][l] = RTC_INVALID_GEOMETRY_ID;
         }
-        if (any) rtcOccluded8(valid, q->scene, &context, &rh.ray);
-        else rtcIntersect8(valid, q->scene, &context, &rh);
+        if (any)
+            rtcOccluded8(valid, q->scene, &context, &rh.ray);
+        else
+            rtcIntersect8(valid, q->scene, &context, &rh);
         for (uint32_t l = 0; l < n; l++) {
             q->hit[ray[l]] = any ? rh.ray.tfar[l] == -INFINITY : rh.hit.geomID[l] != RTC_INVALID_GEOMETRY_ID;
             if (!any) q->prim[ray[l]] = q->hit[ray[l]] ? rh.hit.primID[l] : BENCH_MISS;
@@ -271,10 +275,14 @@ int main(int argc, char **argv)
     const char *results = NULL;
     bool high = true, usage = argc < 2;
     for (int i = 2; i < argc && !usage; i++) {
-        if (!strcmp(argv[i], "--no-high")) high = false;
-        else if (!strcmp(argv[i], "--repeats") && i + 1 < argc && sscanf(argv[i + 1], "%u", &repeats) == 1 && repeats) i++;
-        else if (!strcmp(argv[i], "--results") && i + 1 < argc) results = argv[++i];
-        else usage = true;
+        if (!strcmp(argv[i], "--no-high"))
+            high = false;
+        else if (!strcmp(argv[i], "--repeats") && i + 1 < argc && sscanf(argv[i + 1], "%u", &repeats) == 1 && repeats)
+            i++;
+        else if (!strcmp(argv[i], "--results") && i + 1 < argc)
+            results = argv[++i];
+        else
+            usage = true;
     }
     if (usage) {
         fputs("usage: embree-harness WORKLOAD [--repeats N] [--results FILE] [--no-high]\n", stderr);
@@ -291,7 +299,8 @@ int main(int argc, char **argv)
     rtcReleaseDevice(one);
     RTCDevice all = new_device(NULL);
     double build_all = time_build(all, &w, RTC_BUILD_QUALITY_MEDIUM, repeats, "all threads", &cpu_all);
-    double high_all = high ? time_build(all, &w, RTC_BUILD_QUALITY_HIGH, repeats, "HIGH, all threads", &cpu_high_all) : 0.0;
+    double high_all =
+        high ? time_build(all, &w, RTC_BUILD_QUALITY_HIGH, repeats, "HIGH, all threads", &cpu_high_all) : 0.0;
     ssize_t version = rtcGetDeviceProperty(all, RTC_DEVICE_PROPERTY_VERSION); /* e.g. 31305 for 3.13.5 */
     printf("kernel embree-%zd.%zd.%zd\nthreads_all %u\nvertices %u\ntriangles %u\n", version / 10000,
            version / 100 % 100, version % 100, bench_cpu_count(), w.vertex_count, w.triangle_count);

@@ -50,7 +50,8 @@ static bool read_results(const char *path, const bench_workload *w, bench_result
     char m[sizeof magic];
     uint32_t counts[2];
     bool ok = f && fread(m, 1, sizeof m, f) == sizeof m && !memcmp(m, magic, sizeof m) &&
-              fread(counts, sizeof counts[0], 2, f) == 2 && counts[0] == w->primary_count && counts[1] == w->shadow_count &&
+              fread(counts, sizeof counts[0], 2, f) == 2 && counts[0] == w->primary_count &&
+              counts[1] == w->shadow_count &&
               fread(r->primary_prim, sizeof *r->primary_prim, counts[0], f) == counts[0] &&
               fread(r->shadow_blocked, 1, counts[1], f) == counts[1];
     if (f) fclose(f);
@@ -60,8 +61,10 @@ static bool read_results(const char *path, const bench_workload *w, bench_result
 
 static void describe(char *out, size_t size, uint32_t prim)
 {
-    if (prim == BENCH_MISS) snprintf(out, size, "miss");
-    else snprintf(out, size, "triangle %u", prim);
+    if (prim == BENCH_MISS)
+        snprintf(out, size, "miss");
+    else
+        snprintf(out, size, "triangle %u", prim);
 }
 
 int bench_agree(const char *workload, const char *path_a, const char *path_b, double min_percent)

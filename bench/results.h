@@ -4,17 +4,17 @@
 #ifndef BENCH_RESULTS_H
 #define BENCH_RESULTS_H
 
+#include "workload.h"
 #include <stdbool.h>
 #include <stdint.h>
-#include "workload.h"
 
 #define BENCH_MISS UINT32_MAX
 
 typedef struct {
     uint32_t primary_count, shadow_count;
-    uint8_t *primary_hit;     /* camera ray i hit something */
-    uint32_t *primary_prim;   /* the triangle it hit, or BENCH_MISS */
-    uint8_t *shadow_blocked;  /* shadow ray i is blocked */
+    uint8_t *primary_hit;    /* camera ray i hit something */
+    uint32_t *primary_prim;  /* the triangle it hit, or BENCH_MISS */
+    uint8_t *shadow_blocked; /* shadow ray i is blocked */
 } bench_results;
 
 /* Zeroed arrays for w's rays; false (and a line on stderr) when memory runs out. */

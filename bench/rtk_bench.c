@@ -16,19 +16,19 @@
  * which is what rtk's shader asks in opaque-shadow mode. The packet rows give the stream
  * queries one packet at a time (the camera rays of 4 x 2 pixels, the shadow rays of
  * their hits), as rtcIntersect8 and rtcOccluded8 get them. */
+#include "cli/cli.h"
+#include "debug/scene_stats.h"
+#include "load/scene_open.h"
+#include "results.h"
+#include "rtk_rays.h"
+#include "thread/kernel.h"
+#include "thread/threads.h"
+#include "timing.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
-#include "cli/cli.h"
-#include "thread/kernel.h"
-#include "thread/threads.h"
-#include "results.h"
-#include "rtk_rays.h"
-#include "load/scene_open.h"
-#include "debug/scene_stats.h"
-#include "timing.h"
 
 typedef struct {
     const rt_scene *scene;
@@ -69,8 +69,10 @@ static void packet_range(void *ctx, uint32_t begin, uint32_t end, bool any)
         rt_scene_hit h[BENCH_PACKET];
         bool found[BENCH_PACKET];
         for (uint32_t i = 0; i < n; i++) rs[i] = rt_intersect_prepare(q->rays[ray[i]]);
-        if (any) rt_scene_any_stream(q->scene, rs, n, found);
-        else rt_scene_nearest_stream(q->scene, rs, n, h, found);
+        if (any)
+            rt_scene_any_stream(q->scene, rs, n, found);
+        else
+            rt_scene_nearest_stream(q->scene, rs, n, h, found);
         for (uint32_t i = 0; i < n; i++) {
             q->hit[ray[i]] = found[i];
             if (!any) q->prim[ray[i]] = found[i] ? h[i].prim : BENCH_MISS;
@@ -85,7 +87,8 @@ static rt_ray from_bench(const bench_ray *b)
 {
     rt_ray r;
     r.origin = rt_v3(rt_from_double(b->origin[0]), rt_from_double(b->origin[1]), rt_from_double(b->origin[2]));
-    r.direction = rt_v3(rt_from_double(b->direction[0]), rt_from_double(b->direction[1]), rt_from_double(b->direction[2]));
+    r.direction =
+        rt_v3(rt_from_double(b->direction[0]), rt_from_double(b->direction[1]), rt_from_double(b->direction[2]));
     r.t_min = rt_from_double(b->t_min);
     r.t_max = isinf(b->t_max) ? RT_REAL_MAX : rt_from_double(b->t_max);
     return r;
@@ -110,7 +113,8 @@ static bool time_queries(const char *name, const rt_scene *scene, const bench_ra
     char packet_name[64];
     snprintf(packet_name, sizeof packet_name, "%s_packets", name);
     if (ok) {
-        bench_time_rays("rtk " RT_REAL_NAME, name, count, count, repeats, any ? any_range : nearest_range, &single, hit);
+        bench_time_rays("rtk " RT_REAL_NAME, name, count, count, repeats, any ? any_range : nearest_range, &single,
+                        hit);
         bench_time_rays("rtk " RT_REAL_NAME, packet_name, packets->count, count, repeats,
                         any ? any_packets : nearest_packets, &grouped, packet_hit);
     }
@@ -146,7 +150,8 @@ static void *map_memory(size_t size)
 static double time_build(const rt_scene *scene, uint32_t threads, uint32_t repeats, double *best_cpu)
 {
     size_t n = scene->prim_count;
-    size_t size = n * (2 * sizeof(rt_bvh_node) + sizeof(uint32_t) + sizeof(rt_aabb) + sizeof(rt_vec3)) + ((size_t)1 << 20);
+    size_t size =
+        n * (2 * sizeof(rt_bvh_node) + sizeof(uint32_t) + sizeof(rt_aabb) + sizeof(rt_vec3)) + ((size_t)1 << 20);
     rt_workers workers = rtp_threads_workers(threads);
     double best = 0.0;
     for (uint32_t r = 0; r < repeats; r++) {
@@ -243,10 +248,14 @@ int main(int argc, char **argv)
         const char *val = i + 1 < argc ? argv[i + 1] : NULL;
         if (!val) return usage();
         bool good = false;
-        if (!strcmp(argv[i], "--assets")) opt.assets_root = val, good = true;
-        else if (!strcmp(argv[i], "--results")) results = val, good = true;
-        else if (!strcmp(argv[i], "--size")) good = sscanf(val, "%ux%u", &width, &height) == 2 && width && height;
-        else if (!strcmp(argv[i], "--repeats")) good = sscanf(val, "%u", &repeats) == 1 && repeats;
+        if (!strcmp(argv[i], "--assets"))
+            opt.assets_root = val, good = true;
+        else if (!strcmp(argv[i], "--results"))
+            results = val, good = true;
+        else if (!strcmp(argv[i], "--size"))
+            good = sscanf(val, "%ux%u", &width, &height) == 2 && width && height;
+        else if (!strcmp(argv[i], "--repeats"))
+            good = sscanf(val, "%u", &repeats) == 1 && repeats;
         if (!good) return usage();
         i++;
     }
@@ -264,7 +273,9 @@ int main(int argc, char **argv)
     bool ok;
     if (!strcmp(argv[1], "rays")) {
         ok = bench_make_workload(scene, width, height, &w) && bench_workload_write(argv[3], &w);
-        if (ok) printf("triangles %u\nprimary_rays %u\nshadow_rays %u\n", w.triangle_count, w.primary_count, w.shadow_count);
+        if (ok)
+            printf("triangles %u\nprimary_rays %u\nshadow_rays %u\n", w.triangle_count, w.primary_count,
+                   w.shadow_count);
     } else {
         ok = bench_workload_read(argv[3], &w);
         if (ok && (w.triangle_count != scene->triangle_count || scene->prim_count != scene->triangle_count)) {

@@ -17,12 +17,12 @@ typedef struct {
 
 typedef struct {
     uint32_t vertex_count, triangle_count;
-    double *positions;  /* 3 per vertex, world space */
-    uint32_t *indices;  /* 3 per triangle */
+    double *positions;      /* 3 per vertex, world space */
+    uint32_t *indices;      /* 3 per triangle */
     uint32_t width, height; /* primary rays: one per pixel centre, row by row, row 0 at the top */
     uint32_t primary_count, shadow_count;
-    bench_ray *primary; /* camera rays */
-    bench_ray *shadow;  /* from each primary hit towards the light, in the primary rays' order */
+    bench_ray *primary;      /* camera rays */
+    bench_ray *shadow;       /* from each primary hit towards the light, in the primary rays' order */
     uint32_t *shadow_source; /* the primary ray each shadow ray starts from */
 } bench_workload;
 
@@ -37,8 +37,8 @@ void bench_workload_free(bench_workload *w);
  * shadow array), in a malloc'd array that bench_packets_free releases. */
 #define BENCH_PACKET 8
 typedef struct {
-    uint32_t count;   /* packets */
-    uint32_t *start;  /* count + 1 offsets */
+    uint32_t count;  /* packets */
+    uint32_t *start; /* count + 1 offsets */
     uint32_t *ray;
 } bench_packets;
 

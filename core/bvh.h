@@ -40,12 +40,4 @@ bool rt_bvh_set_kernel(rt_bvh *bvh, rt_kernel k);
 /* Whether the BVH's kernel traces the stream queries in packets. */
 bool rt_bvh_packets(const rt_bvh *bvh);
 
-/* The same queries for n rays at once, through the BVH: found[i] and out[i] are what
- * rt_scene_nearest(scene, &rs[i], true, &out[i]) and rt_scene_any(scene, &rs[i], true)
- * give, bit for bit. Rays that share a direction octant and axis permutation (a tile's
- * camera rays, their shadow rays) are traced RT_PACKET at a time where the kernel has
- * packets. */
-void rt_scene_nearest_stream(const rt_scene *scene, const rt_ray_setup *rs, uint32_t n, rt_scene_hit *out, bool *found);
-void rt_scene_any_stream(const rt_scene *scene, const rt_ray_setup *rs, uint32_t n, bool *found);
-
 #endif

@@ -77,7 +77,7 @@ static inline float_entry float_child(const rt_bvh_node *node, int c, const floa
 
 /* Of hit children a < b, returns the nearer (a on a tie) and pushes the other. */
 __attribute__((always_inline)) static inline float_entry float_nearer(const rt_bvh_node *node, int a, int b,
-                                                                     const float *t, float_entry *stack, uint32_t *top)
+                                                                      const float *t, float_entry *stack, uint32_t *top)
 {
     if (t[b] < t[a]) {
         stack[(*top)++] = float_child(node, a, t);
@@ -92,8 +92,8 @@ __attribute__((always_inline)) static inline float_entry float_nearer(const rt_b
  * computed: a predicted branch lets the next node's load start before this node's test
  * is done. */
 __attribute__((always_inline)) static inline float_entry float_descend(const rt_bvh_node *node, unsigned hits,
-                                                                      const float *t, float_entry *stack,
-                                                                      uint32_t *top)
+                                                                       const float *t, float_entry *stack,
+                                                                       uint32_t *top)
 {
     switch (hits) {
     case 1: return float_child(node, 0, t);
@@ -127,7 +127,8 @@ __attribute__((always_inline)) static inline float_entry float_descend(const rt_
  * is entered beyond that, so ties to a lower reference survive. An unused slot's box is
  * empty (lo = FLT_MAX, hi = -FLT_MAX: entered beyond where it is left), so no slot needs
  * a check of its count. */
-static inline bool float_walk(const rt_scene *scene, const rt_ray_setup *rs, const float_slab *f, bool any, rt_scene_hit *out)
+static inline bool float_walk(const rt_scene *scene, const rt_ray_setup *rs, const float_slab *f, bool any,
+                              rt_scene_hit *out)
 {
     const rt_bvh_node *nodes = scene->bvh.nodes;
     rt_vec3 d = rs->ray.direction;

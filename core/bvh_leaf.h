@@ -125,7 +125,8 @@ __attribute__((always_inline)) static inline bool leaf_loop(const rt_scene *scen
  * loop keeps its registers, with one copy of the loop per axis permutation; with `any`,
  * stops at the first hit. Returns *found. */
 __attribute__((noinline, unused)) static bool visit_leaf(const rt_scene *scene, uint32_t first, uint32_t count,
-                                                 const rt_ray_setup *rs, bool any, rt_scene_hit *best, bool *found)
+                                                         const rt_ray_setup *rs, bool any, rt_scene_hit *best,
+                                                         bool *found)
 {
     bool swapped = rs->kx != (rs->kz + 1) % 3; /* see rt_intersect_prepare */
     switch (rs->kz * 2 + swapped) {

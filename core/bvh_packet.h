@@ -76,9 +76,9 @@ __attribute__((always_inline)) static inline PACKET_TARGET float pk_min(pk_f v, 
 
 /* Tests child c of `node` for the packet's rays: returns the lanes that enter its box,
  * with their entry distances (bounded from below) in t and the lanes' test in in. */
-__attribute__((always_inline)) static inline PACKET_TARGET unsigned pk_child(const pk_packet *p, const rt_bvh_node *node,
-                                                                             int c, pk_f t[PACKET_NF],
-                                                                             pk_i in[PACKET_NF])
+__attribute__((always_inline)) static inline PACKET_TARGET unsigned pk_child(const pk_packet *p,
+                                                                             const rt_bvh_node *node, int c,
+                                                                             pk_f t[PACKET_NF], pk_i in[PACKET_NF])
 {
     const char *b = (const char *)node->box;
     pk_f nx = PK_ALLF(((const float *)(b + p->near[0]))[c]), ny = PK_ALLF(((const float *)(b + p->near[1]))[c]);
@@ -100,7 +100,8 @@ __attribute__((always_inline)) static inline PACKET_TARGET unsigned pk_child(con
 }
 
 /* The smallest entry distance of the lanes that enter a child: the order of children. */
-__attribute__((always_inline)) static inline PACKET_TARGET float pk_first(const pk_f t[PACKET_NF], const pk_i in[PACKET_NF])
+__attribute__((always_inline)) static inline PACKET_TARGET float pk_first(const pk_f t[PACKET_NF],
+                                                                          const pk_i in[PACKET_NF])
 {
     float m = pk_min(t[0], in[0]);
     for (int v = 1; v < PACKET_NF; v++) {
@@ -170,12 +171,9 @@ __attribute__((always_inline)) static inline PACKET_TARGET unsigned pk_triangle(
 
 /* The references of a leaf for the rays in mask; returns the lanes whose nearest hit
  * changed. With `any`, a lane stops at its first hit. */
-__attribute__((always_inline)) static inline PACKET_TARGET unsigned pk_leaf_loop(const rt_scene *scene, const pk_packet *p,
-                                                                                 const rt_ray_setup *const *rs,
-                                                                                 uint32_t first, uint32_t count,
-                                                                                 unsigned mask, bool any,
-                                                                                 rt_scene_hit *out, bool *found, int kx,
-                                                                                 int ky, int kz)
+__attribute__((always_inline)) static inline PACKET_TARGET unsigned pk_leaf_loop(
+    const rt_scene *scene, const pk_packet *p, const rt_ray_setup *const *rs, uint32_t first, uint32_t count,
+    unsigned mask, bool any, rt_scene_hit *out, bool *found, int kx, int ky, int kz)
 {
     const uint32_t *refs = scene->bvh.prim_refs;
     unsigned improved = 0;
@@ -238,14 +236,17 @@ static PACKET_TARGET unsigned pk_fill(pk_packet *p, const rt_ray_setup *const *r
             ok &= (mag >= small) & (mag <= large) & (o_mag <= large) & ((ext + o_mag) * mag <= reach);
             pk_d pad = o_mag * step + tiny, up = o[k][v] + pad, down = o[k][v] - pad;
             pk_l pos = inv[k][v] > zero;
-            pk_d near = (pk_d)(((pk_l)up & pos) | ((pk_l)down & ~pos)), far = (pk_d)(((pk_l)down & pos) | ((pk_l)up & ~pos));
+            pk_d near = (pk_d)(((pk_l)up & pos) | ((pk_l)down & ~pos)),
+                 far = (pk_d)(((pk_l)down & pos) | ((pk_l)up & ~pos));
             pk_d shrink = inv[k][v] * PK_ALLD(1.0 - 0x1p-21), grow = inv[k][v] * PK_ALLD(1.0 + 0x1p-21);
             for (int i = 0; i < PACKET_LANES_D; i++) {
                 int l = v * PACKET_LANES_D + i;
-                on[k][l] = (float)near[i], of[k][l] = (float)far[i], in[k][l] = (float)shrink[i], ifar[k][l] = (float)grow[i];
+                on[k][l] = (float)near[i], of[k][l] = (float)far[i], in[k][l] = (float)shrink[i],
+                ifar[k][l] = (float)grow[i];
             }
         }
-        pk_d t_lo = p->t_min[v] - (pk_abs(p->t_min[v]) * step + tiny), t_hi = p->t_max[v] + (pk_abs(p->t_max[v]) * step + tiny);
+        pk_d t_lo = p->t_min[v] - (pk_abs(p->t_min[v]) * step + tiny),
+             t_hi = p->t_max[v] + (pk_abs(p->t_max[v]) * step + tiny);
         for (int i = 0; i < PACKET_LANES_D; i++) {
             tmin[v * PACKET_LANES_D + i] = (float)t_lo[i];
             tmax[v * PACKET_LANES_D + i] = (float)t_hi[i];
@@ -265,7 +266,7 @@ static PACKET_TARGET unsigned pk_fill(pk_packet *p, const rt_ray_setup *const *r
     for (int k = 0; k < 3; k++)
         for (int v = 0; v < PACKET_ND; v++) p->origin[k][v] = o[k][v];
     rt_vec3 d = rs[0]->ray.direction;
-    const size_t row = sizeof ((const rt_bvh_node *)0)->box[0];
+    const size_t row = sizeof((const rt_bvh_node *)0)->box[0];
     p->near[0] = d.x < 0 ? 3 * row : 0, p->near[1] = d.y < 0 ? 4 * row : row, p->near[2] = d.z < 0 ? 5 * row : 2 * row;
     p->far[0] = d.x < 0 ? 0 : 3 * row, p->far[1] = d.y < 0 ? row : 4 * row, p->far[2] = d.z < 0 ? 2 * row : 5 * row;
     p->kx = rs[0]->kx, p->ky = rs[0]->ky, p->kz = rs[0]->kz;

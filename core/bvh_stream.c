@@ -9,10 +9,7 @@ bool rt_bvh_kernel_compiled(rt_kernel k)
     return k == RT_KERNEL_PORTABLE || ((k == RT_KERNEL_SSE2 || k == RT_KERNEL_AVX2) && FLOAT_WALK);
 }
 
-bool rt_bvh_packets(const rt_bvh *bvh)
-{
-    return FLOAT_WALK && bvh->kernel != RT_KERNEL_PORTABLE;
-}
+bool rt_bvh_packets(const rt_bvh *bvh) { return FLOAT_WALK && bvh->kernel != RT_KERNEL_PORTABLE; }
 
 #if FLOAT_WALK
 /* Rays waiting for their packet: one group per octant (3 bits) and largest axis (kz). */
@@ -59,10 +56,7 @@ static void stream(const rt_scene *scene, const rt_ray_setup *rs, uint32_t n, bo
 }
 
 /* Packets need the float bounds and at least one primitive; otherwise one by one. */
-static bool packets(const rt_scene *scene)
-{
-    return rt_bvh_packets(&scene->bvh) && scene->prim_count > 0;
-}
+static bool packets(const rt_scene *scene) { return rt_bvh_packets(&scene->bvh) && scene->prim_count > 0; }
 #endif
 
 void rt_scene_nearest_stream(const rt_scene *scene, const rt_ray_setup *rs, uint32_t n, rt_scene_hit *out, bool *found)

@@ -109,9 +109,9 @@ static rt_vec3 trace_path(const path *pa, rt_ray ray, uint32_t depth, uint64_t n
     uint32_t n = depth < max_depth ? branches(pa, &p, node, after_diffuse, b) : 0;
     if (pa->single_branch && n > 1) n = single_branch(pa, node, b, n);
     for (uint32_t i = 0; i < n; i++) {
-        rt_vec3 incoming = trace_path(pa, rt_ray_make(p.point, b[i].direction, RT_REAL_MAX), depth + 1,
-                                      rt_rng_child(node, b[i].kind), b[i].kind, p.ray,
-                                      after_diffuse || b[i].kind == RT_RAY_DIFFUSE);
+        rt_vec3 incoming =
+            trace_path(pa, rt_ray_make(p.point, b[i].direction, RT_REAL_MAX), depth + 1, rt_rng_child(node, b[i].kind),
+                       b[i].kind, p.ray, after_diffuse || b[i].kind == RT_RAY_DIFFUSE);
         color = rt_v3_add(color, rt_v3_mul(b[i].weight, incoming));
     }
     rt_ray_record *rec = rt_raylog_ray(pa->tr->log, p.ray);

@@ -13,7 +13,7 @@ typedef struct {
     rt_ray_kind kind;
     uint32_t parent; /* index of the ray whose hit spawned it, or RT_NO_PARENT */
     uint32_t depth;
-    uint32_t light;  /* shadow rays: the light they test */
+    uint32_t light; /* shadow rays: the light they test */
     rt_ray ray;
     bool hit;
     rt_scene_hit scene_hit;
@@ -21,7 +21,7 @@ typedef struct {
     rt_vec3 normal_used; /* the shading normal turned towards the viewer */
     bool entering;       /* the viewer is on the shading normal's side */
     bool total_internal_reflection;
-    rt_vec3 emissive;    /* k_e at the hit */
+    rt_vec3 emissive; /* k_e at the hit */
     /* Shadow rays: the transmittance of the surface crossed (0 for opaque mode). */
     rt_vec3 transmittance;
     /* What the ray brings back: its colour (shadow rays: the attenuation so far). */
@@ -30,15 +30,15 @@ typedef struct {
 
 /* The terms of one light at one surface hit (format §9). */
 typedef struct {
-    uint32_t ray;   /* the ray whose hit this lights */
+    uint32_t ray; /* the ray whose hit this lights */
     uint32_t light;
-    rt_vec3 ambient;              /* k_d * ambient */
+    rt_vec3 ambient; /* k_d * ambient */
     rt_real n_dot_l, n_dot_h;
-    rt_vec3 diffuse;              /* k_d * N.L (0 when gated) */
-    rt_vec3 specular;             /* k_s * (N.H)^n_s (0 when gated) */
+    rt_vec3 diffuse;  /* k_d * N.L (0 when gated) */
+    rt_vec3 specular; /* k_s * (N.H)^n_s (0 when gated) */
     rt_real distance_attenuation;
     rt_vec3 shadow_attenuation;
-    rt_vec3 contribution;         /* ambient + shadow * A_dist * I_L * (diffuse + specular) */
+    rt_vec3 contribution; /* ambient + shadow * A_dist * I_L * (diffuse + specular) */
 } rt_light_record;
 
 typedef struct {

@@ -64,8 +64,10 @@ static void trace_batch(const rt_tracer *tr, const uint32_t *col, const uint32_t
             owner[m++] = i;
         }
         bool blocked[BATCH];
-        if (opaque) rt_scene_any_stream(scene, shadow, m, blocked);
-        else rt_scene_nearest_stream(scene, shadow, m, shadow_hit, blocked);
+        if (opaque)
+            rt_scene_any_stream(scene, shadow, m, blocked);
+        else
+            rt_scene_nearest_stream(scene, shadow, m, shadow_hit, blocked);
         for (uint32_t j = 0; j < m; j++) {
             primed[owner[j]].shadow[l] = blocked[j] ? 2 : 1;
             if (blocked[j] && !opaque) primed[owner[j]].shadow_hit[l] = shadow_hit[j];

@@ -3,8 +3,8 @@
 #include "scene_query.h"
 #include "bvh_slab.h"
 
-#include "bvh_leaf.h"
 #include "bvh_float.h"
+#include "bvh_leaf.h"
 
 static bool nearest_brute(const rt_scene *scene, const rt_ray_setup *rs, rt_scene_hit *out)
 {
@@ -112,7 +112,8 @@ static bool walk(const rt_scene *scene, const rt_ray_setup *rs, bool any, rt_sce
 {
 #if FLOAT_WALK
     float_slab f;
-    if (scene->bvh.kernel != RT_KERNEL_PORTABLE && scene->prim_count > 0 && float_slab_prepare(rs, scene->bvh.extent, &f))
+    if (scene->bvh.kernel != RT_KERNEL_PORTABLE && scene->prim_count > 0 &&
+        float_slab_prepare(rs, scene->bvh.extent, &f))
         return float_walk(scene, rs, &f, any, out);
 #endif
     return nearest_bvh(scene, rs, any, out);
@@ -139,8 +140,10 @@ uint32_t rt_scene_triangle_object(const rt_scene *scene, uint32_t triangle)
     uint32_t lo = 0, hi = scene->mesh_object_count;
     while (hi - lo > 1) {
         uint32_t mid = lo + (hi - lo) / 2;
-        if (scene->objects[scene->mesh_objects[mid]].first_triangle <= triangle) lo = mid;
-        else hi = mid;
+        if (scene->objects[scene->mesh_objects[mid]].first_triangle <= triangle)
+            lo = mid;
+        else
+            hi = mid;
     }
     return scene->mesh_objects[lo];
 }

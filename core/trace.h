@@ -20,8 +20,8 @@ typedef struct {
 typedef struct {
     const rt_scene *scene;
     bool use_bvh;
-    rt_ray_log *log;          /* NULL except when debugging */
-    const rt_primed *primed;  /* NULL except for a camera ray traced in a packet */
+    rt_ray_log *log;         /* NULL except when debugging */
+    const rt_primed *primed; /* NULL except for a camera ray traced in a packet */
 } rt_tracer;
 
 /* The colour a ray brings back; depth 0 for camera rays. Not clamped. */

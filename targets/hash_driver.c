@@ -3,13 +3,13 @@
  * matrix (targets/determinism.sh); it needs only a C library to read the file. An
  * optional third argument names the BVH kernel (portable, sse2, avx2; default: the
  * build's own); the matrix passes only kernels the CPU runs. */
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
 #include "blob.h"
 #include "bvh.h"
 #include "render.h"
 #include "sha256.h"
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 static uint8_t *read_file(const char *path, size_t *size)
 {

@@ -4,8 +4,8 @@
 #include "capture.h"
 #include "cli/debug_cmd.h"
 #include "cli/exit_codes.h"
-#include "json_check.h"
 #include "debug/pixel_trace.h"
+#include "json_check.h"
 #include "reference.h"
 #include "tmpdir.h"
 
@@ -299,8 +299,8 @@ static void expect_terms_add_up(void)
         rt_vec3 sum = r->emissive;
         for (uint32_t j = pt.first_light[i]; j != RT_NO_PARENT; j = pt.next_light[j]) {
             const rt_light_record *l = &pt.log.lights[j];
-            rt_vec3 light = rt_v3_scale(rt_v3_mul(l->shadow_attenuation, scene->lights[l->light].color),
-                                        l->distance_attenuation);
+            rt_vec3 light =
+                rt_v3_scale(rt_v3_mul(l->shadow_attenuation, scene->lights[l->light].color), l->distance_attenuation);
             rt_vec3 want = rt_v3_add(l->ambient, rt_v3_mul(light, rt_v3_add(l->diffuse, l->specular)));
             expect_vec(l->contribution, XYZ(want), 1e-12, "light contribution");
             sum = rt_v3_add(sum, l->contribution);

@@ -2,18 +2,18 @@
  * numbers, the estimators' expected values (white furnace, caustics rule, single
  * branching, soft shadows), convergence as 1/sqrt(spp), the energy bound, the
  * sample count types, the thin lens, and independence from tiles and threads. */
+#include "builtin_mesh.h"
+#include "cli/cli.h"
+#include "load/scene_open.h"
+#include "path_trace.h"
+#include "reference.h"
+#include "render.h"
+#include "thread/threads.h"
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "builtin_mesh.h"
-#include "cli/cli.h"
-#include "thread/threads.h"
-#include "path_trace.h"
-#include "reference.h"
-#include "render.h"
-#include "load/scene_open.h"
 
 /* ---- Helpers ---- */
 
@@ -24,7 +24,10 @@
 #define EXACT 1e-9
 #endif
 
-static rt_vec3 v3(double x, double y, double z) { return rt_v3(rt_from_double(x), rt_from_double(y), rt_from_double(z)); }
+static rt_vec3 v3(double x, double y, double z)
+{
+    return rt_v3(rt_from_double(x), rt_from_double(y), rt_from_double(z));
+}
 
 static rt_material material(rt_vec3 kd, rt_vec3 ks, rt_vec3 ke)
 {
@@ -244,8 +247,8 @@ Test(montecarlo, white_furnace_gives_the_finite_bounce_sum)
             rt_vec3 *c = render_colors(&b.scene);
             double want = finite_sum(0.25, 0.5, depths[i]);
             for (int p = 0; p < 16; p++)
-                cr_expect(fabs(rt_to_double(c[p].y) - want) < 1e-6, "depth %u mode %u: %.9f, want %.9f",
-                          depths[i], mode, rt_to_double(c[p].y), want);
+                cr_expect(fabs(rt_to_double(c[p].y) - want) < 1e-6, "depth %u mode %u: %.9f, want %.9f", depths[i],
+                          mode, rt_to_double(c[p].y), want);
             if (depths[i] == 40) cr_expect(fabs(rt_to_double(c[0].x) - 0.5) < 1e-6, "not e / (1 - rho)");
             free(c);
             free(b.memory);
@@ -429,7 +432,8 @@ Test(montecarlo, no_pixel_brighter_than_the_bound)
         }
         double bound = finite_sum(e, w, s->camera.trace.max_depth);
         for (uint32_t p = 0; p < 256; p++) {
-            cr_expect(channel(c[p], ch) <= bound, "pixel %u channel %d: %.4f above %.4f", p, ch, channel(c[p], ch), bound);
+            cr_expect(channel(c[p], ch) <= bound, "pixel %u channel %d: %.4f above %.4f", p, ch, channel(c[p], ch),
+                      bound);
             brightest = fmax(brightest, channel(c[p], ch));
         }
         fprintf(stderr, "montecarlo: cornell 16x16 channel %d: brightest %.4f, bound %.4f\n", ch, brightest, bound);

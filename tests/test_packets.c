@@ -2,17 +2,17 @@
  * kernels) give every ray exactly what the one-ray queries give it, and a render traced
  * in packets (core/render_packet.c) is the same bytes as one traced pixel by pixel,
  * under every kernel this CPU runs. */
+#include "bvh.h"
+#include "cli/cli.h"
+#include "load/scene_open.h"
+#include "reference.h"
+#include "render.h"
+#include "sha256.h"
+#include "thread/kernel.h"
 #include <criterion/criterion.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "bvh.h"
-#include "cli/cli.h"
-#include "thread/kernel.h"
-#include "reference.h"
-#include "render.h"
-#include "load/scene_open.h"
-#include "sha256.h"
 
 static uint64_t lcg_state;
 static double next_unit(void)
@@ -34,7 +34,8 @@ static void soup(rt_scene *s, void **memory, uint32_t triangles, uint32_t sphere
     uint32_t vertices = triangles + 2;
     rt_vec3 *pos = malloc(sizeof(rt_vec3) * vertices);
     uint32_t *idx = malloc(sizeof(uint32_t) * triangles * 3);
-    for (uint32_t i = 0; i < vertices; i++) pos[i] = rt_v3(next_range(-10, 10), next_range(-10, 10), next_range(-10, 10));
+    for (uint32_t i = 0; i < vertices; i++)
+        pos[i] = rt_v3(next_range(-10, 10), next_range(-10, 10), next_range(-10, 10));
     for (uint32_t t = 0; t < triangles; t++) { /* a strip: neighbours share an edge */
         idx[3 * t] = t;
         idx[3 * t + 1] = t + 1;
@@ -93,8 +94,8 @@ static void bundles(rt_ray_setup *rs)
         double spread = next_unit() < 0.7 ? 0.02 : 0.8;
         uint32_t n = 1 + (uint32_t)(next_unit() * 64);
         for (uint32_t k = 0; k < n && i < RAYS; k++, i++) {
-            rt_vec3 d = rt_v3_normalize(rt_v3_add(aim, rt_v3(next_range(-spread, spread), next_range(-spread, spread),
-                                                             next_range(-spread, spread))));
+            rt_vec3 d = rt_v3_normalize(rt_v3_add(
+                aim, rt_v3(next_range(-spread, spread), next_range(-spread, spread), next_range(-spread, spread))));
             if (i % 97 == 0) d.x = 0;
             rt_ray r = {o, d, i % 53 == 0 ? 0 : RT_HIT_EPSILON, i % 3 == 0 ? next_range(1, 30) : RT_REAL_MAX};
             rs[i] = rt_intersect_prepare(r);

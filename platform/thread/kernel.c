@@ -1,15 +1,12 @@
 /* Kernel names and the CPU check; see kernel.h. */
 #include "thread/kernel.h"
 
-#include <string.h>
 #include "bvh.h"
+#include <string.h>
 
 static const char *const names[] = {"portable", "sse2", "avx2"};
 
-const char *rtp_kernel_name(rt_kernel k)
-{
-    return (unsigned)k < sizeof names / sizeof names[0] ? names[k] : "?";
-}
+const char *rtp_kernel_name(rt_kernel k) { return (unsigned)k < sizeof names / sizeof names[0] ? names[k] : "?"; }
 
 bool rtp_kernel_parse(const char *s, rt_kernel *out)
 {
@@ -30,10 +27,7 @@ static bool cpu_has(rt_kernel k)
     return k != RT_KERNEL_AVX2;
 }
 
-bool rtp_kernel_runs(rt_kernel k)
-{
-    return rt_bvh_kernel_compiled(k) && cpu_has(k);
-}
+bool rtp_kernel_runs(rt_kernel k) { return rt_bvh_kernel_compiled(k) && cpu_has(k); }
 
 rt_kernel rtp_kernel_best(void)
 {

@@ -3,8 +3,8 @@
 #ifndef RTP_KERNEL_H
 #define RTP_KERNEL_H
 
-#include <stdbool.h>
 #include "scene.h"
+#include <stdbool.h>
 
 /* The kernel's name: "portable", "sse2" or "avx2". */
 const char *rtp_kernel_name(rt_kernel k);
