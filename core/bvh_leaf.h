@@ -7,6 +7,7 @@
 #define RT_BVH_LEAF_H
 
 #include "bvh.h"
+#include "scene_query.h"
 
 static bool quadric_intersect(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs, rt_prim_hit *hit)
 {

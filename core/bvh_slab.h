@@ -6,6 +6,7 @@
 #define RT_BVH_SLAB_H
 
 #include "bvh.h"
+#include "scene_query.h"
 
 /* The double build tests a node's four children two at a time with SSE2 (x86-64's
  * baseline), the fixed build with integer bounds (below); other targets and unusual

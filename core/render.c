@@ -1,5 +1,6 @@
 /* Pixels into bytes, region by region; see render.h. */
 #include "render.h"
+#include "invariant.h"
 #include "render_packet.h"
 
 uint8_t rt_render_color_byte(rt_real c)
@@ -16,6 +17,7 @@ void rt_render_region(const rt_tracer *tr, uint32_t x0, uint32_t y0, uint32_t x1
         return;
     }
     uint32_t width = tr->scene->camera.width;
+    RT_ASSERT(x0 <= x1 && x1 <= width && y0 <= y1 && y1 <= tr->scene->camera.height);
     for (uint32_t row = y0; row < y1; row++)
         for (uint32_t col = x0; col < x1; col++) {
             rt_vec3 c = rt_render_pixel(tr, col, row);

@@ -5,6 +5,7 @@
  * what the one-ray queries give it, and a pixel sums its samples in the same order as
  * rt_render_pixel, so the image is the same bytes. See render_packet.h. */
 #include "render_packet.h"
+#include "bvh.h"
 
 #include "shading.h"
 

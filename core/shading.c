@@ -53,13 +53,13 @@ static rt_vec3 shadow_attenuation(const rt_tracer *tr, rt_vec3 point, rt_vec3 to
 {
     const rt_scene *scene = tr->scene;
     rt_vec3 atten = rt_v3(RT_ONE, RT_ONE, RT_ONE);
-    uint32_t mode = scene->camera.trace.shadows;
-    if (mode == 0) return atten;
+    rt_shadow_mode mode = scene->camera.trace.shadows;
+    if (mode == RT_SHADOWS_NONE) return atten;
     /* The first query, when the packets made it (see rt_primed). */
     uint8_t primed = depth == 0 && tr->primed && light < RT_PRIMED_LIGHTS ? tr->primed->shadow[light] : 0;
     /* Opaque shadows need only whether anything blocks (any hit), unless the debugger
      * records which hit did. */
-    if (mode == 1 && !tr->log) {
+    if (mode == RT_SHADOWS_OPAQUE && !tr->log) {
         bool blocked = primed == 2;
         if (!primed) {
             rt_ray_setup rs = rt_intersect_prepare(rt_ray_make(point, to_light, distance));
@@ -84,8 +84,9 @@ static rt_vec3 shadow_attenuation(const rt_tracer *tr, rt_vec3 point, rt_vec3 to
         }
         if (known) hit = tr->primed->shadow_hit[light];
         rt_surface s = rt_surface_at(scene, &ray, &hit);
-        rt_vec3 kt = mode == 1 ? rt_v3(RT_ZERO, RT_ZERO, RT_ZERO)
-                               : rt_surface_channel(scene, &scene->materials[s.material].transmittance, s.uv);
+        rt_vec3 kt = mode == RT_SHADOWS_OPAQUE
+                         ? rt_v3(RT_ZERO, RT_ZERO, RT_ZERO)
+                         : rt_surface_channel(scene, &scene->materials[s.material].transmittance, s.uv);
         atten = rt_v3_mul(atten, kt);
         if (rec) {
             rec->hit = true;
@@ -131,7 +132,7 @@ bool rt_shading_shadow_ray(const rt_tracer *tr, uint32_t index, const rt_shading
 {
     rt_vec3 to_light;
     rt_real distance;
-    if (tr->scene->camera.trace.shadows == 0 ||
+    if (tr->scene->camera.trace.shadows == RT_SHADOWS_NONE ||
         !towards_light(&tr->scene->lights[index], p, position, &to_light, &distance))
         return false;
     if (!(rt_v3_dot(p->n, to_light) > RT_ZERO)) return false;

@@ -77,7 +77,7 @@ for real in $reals; do
     check "rtk $opts" "$ref" "$out"
   done
   core_src=$(make -s core-sources RT_REAL="$real")
-  flags="-std=c11 -ffp-contract=off -fno-math-errno -Icore"
+  flags="-std=c11 -ffp-contract=off -fno-math-errno -Iinclude -Icore"
   [ "$real" = fixed ] && flags="$flags -DRT_REAL_FIXED"
   while read -r name cc opt extra run arch; do
     exe=$work/driver-$name

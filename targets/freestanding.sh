@@ -24,7 +24,7 @@ archive() {
   case " $* " in *" -DRT_REAL_FIXED "*) real=fixed ;; esac
   mkdir -p "$work/$name"
   for src in $(make -s core-sources RT_REAL="$real"); do
-    "$cc" -std=c11 -O2 -ffreestanding -fno-builtin -nostdlib -ffp-contract=off -fno-math-errno "$@" \
+    "$cc" -std=c11 -O2 -ffreestanding -fno-builtin -nostdlib -ffp-contract=off -fno-math-errno -Iinclude "$@" \
       -c "$src" -o "$work/$name/$(basename "$src" .c).o"
   done
   ar rcs "$work/$name.a" "$work/$name"/*.o

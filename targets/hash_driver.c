@@ -68,7 +68,7 @@ int main(int argc, char **argv)
     uint32_t w = scene.camera.width, h = scene.camera.height;
     uint8_t *rgb = malloc((size_t)w * h * 3);
     if (!rgb) return 5;
-    rt_tracer tracer = {&scene, true, NULL, NULL};
+    rt_tracer tracer = {.scene = &scene, .use_bvh = true};
     rt_render_region(&tracer, 0, 0, w, h, rgb);
     uint8_t digest[32];
     rt_sha256_ppm(rgb, w, h, digest);

@@ -3,6 +3,7 @@
  * in packets (core/render_packet.c) is the same bytes as one traced pixel by pixel,
  * under every kernel this CPU runs. */
 #include "bvh.h"
+#include "scene_query.h"
 #include "cli/cli.h"
 #include "load/scene_open.h"
 #include "reference.h"
@@ -158,7 +159,7 @@ static void render_hash(const char *name, rt_kernel k, uint32_t size, int32_t aa
     cr_assert_eq(rtp_scene_open(path, &opt, &b, err, sizeof err), 0, "%s", err);
     cr_assert_eq(b.scene.bvh.kernel, k);
     uint8_t *rgb = calloc((size_t)size * size, 3);
-    rt_tracer tr = {&b.scene, true, NULL, NULL};
+    rt_tracer tr = {.scene = &b.scene, .use_bvh = true};
     rt_render_region(&tr, 0, 0, size, size, rgb);
     rt_sha256_ppm(rgb, size, size, digest);
     free(rgb);

@@ -14,6 +14,11 @@ bool rtp_cli_parse_bytes(const char *s, size_t *out);
 /* Prints "rtk <cmd>: <msg>" and a hint to stderr; returns RTP_EXIT_USAGE. */
 int rtp_cli_usage_error(const char *cmd, const char *msg, const char *arg);
 
+/* Parses the scene option at argv[*i] (see rtp_cli_scene_option) without printing: 1 when
+ * consumed (*i advanced past its value), 0 when argv[*i] is not one, -1 with *problem set
+ * (a phrase to put before the option's name) when its value is wrong. */
+int rtp_cli_parse_scene_option(int argc, char **argv, int *i, rtp_scene_options *opt, const char **problem);
+
 /* The scene options every scene-reading subcommand shares (--width --height --depth
  * --aa --spp --assets --max-memory --kernel), at argv[*i]. Returns 1 when it consumed the option (and
  * its value; *i is advanced past it), 0 when argv[*i] is not one of them, or

@@ -1,6 +1,7 @@
 /* Load + build with an arena that grows (up to the memory cap) until the scene fits. */
 #include "load/scene_open.h"
 
+#include "bvh.h"
 #include "cli/exit_codes.h"
 #include "thread/kernel.h"
 #include "thread/threads.h"
@@ -76,7 +77,8 @@ void rtp_scene_close(rtp_scene *b)
 rtp_scene_options rtp_scene_default_options(void)
 {
     rtp_scene_options o = {0};
-    o.max_memory = (size_t)4 << 30;
+    /* 4 GiB, or all a 32-bit size_t can count (wasm32), where 4 << 30 would wrap to 0. */
+    o.max_memory = (uint64_t)4 << 30 > SIZE_MAX ? SIZE_MAX : (size_t)((uint64_t)4 << 30);
     o.depth = -1;
     o.aa = -1;
     return o;
