@@ -62,7 +62,7 @@ void rtk_scene_size(const rtk_scene *scene, uint32_t *width, uint32_t *height)
 
 void rtk_render_region(const rtk_scene *scene, uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1, uint8_t *rgb)
 {
-    rt_tracer tracer = {scene->scene, true, NULL};
+    rt_tracer tracer = {.scene = scene->scene, .use_bvh = true};
     rt_render_region(&tracer, x0, y0, x1, y1, rgb);
 }
 

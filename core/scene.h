@@ -185,6 +185,15 @@ typedef struct {
     uint32_t count[RT_BVH_WIDTH];
 } rt_bvh_node;
 
+/* The query code the BVH runs: every kernel gives the same results. The build picks the
+ * best one the compiler's target guarantees (SSE2 on x86-64); the platform may pick
+ * another with rt_bvh_set_kernel after asking the CPU (the core never does). */
+typedef enum {
+    RT_KERNEL_PORTABLE, /* the general walk, one ray at a time */
+    RT_KERNEL_SSE2,     /* float box tests (double build, x86), packets in 128-bit vectors */
+    RT_KERNEL_AVX2      /* the same with packets in 256-bit vectors */
+} rt_kernel;
+
 typedef struct {
     rt_bvh_node *nodes;
     uint32_t node_count;
@@ -192,6 +201,7 @@ typedef struct {
     uint32_t depth;
     int grid;       /* of the nodes' boxes (rt_bound_grid) */
     rt_real extent; /* the largest |coordinate| of the primitives' padded bounds (0 for none) */
+    rt_kernel kernel;
 } rt_bvh;
 
 typedef struct {

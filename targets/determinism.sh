@@ -3,12 +3,15 @@
 # the same bytes. For each scalar type given (double, fixed):
 #   1. the host rtk at its default settings gives the reference hash of each scene
 #      (rendered at SIZE x SIZE to keep the matrix fast; make check pins full size);
-#   2. the host rtk with other thread counts and tile sizes must match it;
+#   2. the host rtk with other thread counts and tile sizes, and with each BVH kernel
+#      this CPU runs (--kernel portable, sse2, avx2: one ray at a time, packets in 128-
+#      and 256-bit vectors), must match it;
 #   3. the core alone (targets/hash_driver.c reading `rtk pack` blobs), built with gcc
 #      and clang at -O0/-O2/-O3, for i686 (-m32 -msse2 -mfpmath=sse) and for aarch64
-#      (cross-compiled, run under qemu-user), must match it too. The i686 driver runs
-#      natively where the kernel executes 32-bit binaries, else under qemu-i386 (some
-#      kernels are built without 32-bit support: "Exec format error").
+#      (cross-compiled, run under qemu-user), under each kernel the target has and the
+#      CPU runs, must match it too. The i686 driver runs natively where the kernel
+#      executes 32-bit binaries, else under qemu-i386 (some kernels are built without
+#      32-bit support: "Exec format error"), and then without the AVX2 kernel.
 # Prints one line per variant, saying how its driver ran, and "determinism: N passed, M failed".
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -58,7 +61,15 @@ for real in $reals; do
     echo "$s $("$rtk" render "$(path_of "$s")" --width "$size" --height "$size" --hash --quiet)" >>"$ref"
     "$rtk" pack "$(path_of "$s")" --width "$size" --height "$size" -o "$work/$real.$(echo "$s" | tr / _).rtscene"
   done
-  for opts in "--threads 1" "--threads 2 --tile 16" "--threads 7 --tile 5" "--threads 3 --tile 64"; do
+  # The kernels the host runs (the fixed build has only the portable one).
+  kernels=()
+  for k in portable sse2 avx2; do
+    "$rtk" render scenes/demo.yaml --width 4 --height 4 --hash --quiet --kernel $k >/dev/null 2>&1 && kernels+=("$k")
+  done
+  echo "kernels this CPU runs ($real): ${kernels[*]}"
+  opt_sets=("--threads 1" "--threads 2 --tile 16" "--threads 7 --tile 5" "--threads 3 --tile 64")
+  for k in "${kernels[@]}"; do opt_sets+=("--kernel $k"); done
+  for opts in "${opt_sets[@]}"; do
     out=$work/out
     : >"$out"
     # shellcheck disable=SC2086
@@ -68,28 +79,41 @@ for real in $reals; do
   core_src=$(make -s core-sources RT_REAL="$real")
   flags="-std=c11 -ffp-contract=off -fno-math-errno -Iinclude -Icore"
   [ "$real" = fixed ] && flags="$flags -DRT_REAL_FIXED"
-  while read -r name cc opt extra run; do
+  while read -r name cc opt extra run arch; do
     exe=$work/driver-$name
     extra=${extra//_/ }
     [ "$run" = i686 ] && run=$i686_run
     # shellcheck disable=SC2086
     $cc $flags $opt $extra targets/hash_driver.c $core_src -o "$exe"
-    out=$work/out
-    : >"$out"
-    for s in "${scenes[@]}"; do
-      # shellcheck disable=SC2086
-      echo "$s $($run "$exe" "$work/$real.$(echo "$s" | tr / _).rtscene" 512)" >>"$out"
+    # The target's kernels that the host CPU runs (AVX2 only natively).
+    variant_kernels=(portable)
+    if [ "$arch" = x86 ]; then
+      for k in "${kernels[@]}"; do
+        case $k in
+          portable) ;;
+          avx2) if [ "$run" = env ]; then variant_kernels+=(avx2); fi ;;
+          *) variant_kernels+=("$k") ;;
+        esac
+      done
+    fi
+    for k in "${variant_kernels[@]}"; do
+      out=$work/out
+      : >"$out"
+      for s in "${scenes[@]}"; do
+        # shellcheck disable=SC2086
+        echo "$s $($run "$exe" "$work/$real.$(echo "$s" | tr / _).rtscene" 512 $k)" >>"$out"
+      done
+      check "core $name, $k kernel ($([ "$run" = env ] && echo native || echo "$run"))" "$ref" "$out"
     done
-    check "core $name ($([ "$run" = env ] && echo native || echo "$run"))" "$ref" "$out"
   done <<'VARIANTS'
-gcc-O0 gcc -O0 -static env
-gcc-O2 gcc -O2 -static env
-gcc-O3 gcc -O3 -static env
-clang-O0 clang -O0 -static env
-clang-O2 clang -O2 -static env
-clang-O3 clang -O3 -static env
-i686-gcc-O2 gcc -O2 -m32_-msse2_-mfpmath=sse_-static i686
-aarch64-gcc-O2 aarch64-linux-gnu-gcc -O2 -static qemu-aarch64
+gcc-O0 gcc -O0 -static env x86
+gcc-O2 gcc -O2 -static env x86
+gcc-O3 gcc -O3 -static env x86
+clang-O0 clang -O0 -static env x86
+clang-O2 clang -O2 -static env x86
+clang-O3 clang -O3 -static env x86
+i686-gcc-O2 gcc -O2 -m32_-msse2_-mfpmath=sse_-static i686 x86
+aarch64-gcc-O2 aarch64-linux-gnu-gcc -O2 -static qemu-aarch64 arm
 VARIANTS
 done
 echo "determinism: $passed passed, $failed failed"

@@ -81,7 +81,7 @@ void rtk_close(rtk_scene *scene)
 
 rtk_status rtk_render(const rtk_scene *scene, uint32_t threads, uint8_t *rgb)
 {
-    rt_tracer tracer = {scene->scene, true, NULL};
+    rt_tracer tracer = {.scene = scene->scene, .use_bvh = true};
     rtp_threads_options opt = {.threads = threads};
     return rtp_threads_render(&tracer, &opt, rgb) ? RTK_OK : RTK_ERR_NOMEM;
 }

@@ -112,7 +112,7 @@ static int write_svg(const debug_args *a, const rtp_pixel_trace *pt)
         fprintf(stderr, "rtk debug: %s: no memory for a %ux%u image\n", a->scene, img.width, img.height);
         return RTP_EXIT_MEMORY;
     }
-    rt_tracer tracer = {scene, true, NULL};
+    rt_tracer tracer = {.scene = scene, .use_bvh = true};
     rtp_threads_options popt = {0, 0, isatty(STDERR_FILENO) != 0, NULL};
     int rc = RTP_EXIT_OK;
     char err[RTP_ERR_SIZE];

@@ -138,7 +138,7 @@ int rtp_cmd_render(int argc, char **argv)
         rtp_part_free(&part);
         return RTP_EXIT_MEMORY;
     }
-    rt_tracer tracer = {&built.scene, a.use_bvh, NULL};
+    rt_tracer tracer = {.scene = &built.scene, .use_bvh = a.use_bvh};
     a.parallel.progress = !a.quiet && (a.force_progress || isatty(STDERR_FILENO));
     a.parallel.cancel = &interrupted;
     signal(SIGINT, on_signal);

@@ -102,7 +102,7 @@ static bool render_hash(char **words, int count, uint32_t threads, char hash[RTK
     if (rtp_scene_open(words[0], &opt, &built, err, err_size) != RTP_EXIT_OK) return false;
     const rt_camera *cam = &built.scene.camera;
     uint8_t *rgb = malloc((size_t)cam->width * cam->height * 3);
-    rt_tracer tracer = {&built.scene, true, NULL};
+    rt_tracer tracer = {.scene = &built.scene, .use_bvh = true};
     rtp_threads_options popt = {.threads = threads};
     bool ok = rgb && rtp_threads_render(&tracer, &popt, rgb);
     if (ok)

@@ -20,7 +20,7 @@ static void estimate_row(void *arg, uint32_t index, uint32_t worker)
     estimate *e = arg;
     const rt_camera *cam = &e->scene->camera;
     rt_ray_log *log = &e->logs[worker];
-    rt_tracer tracer = {e->scene, true, log};
+    rt_tracer tracer = {.scene = e->scene, .use_bvh = true, .log = log};
     uint32_t y0 = index * e->step_y, y1 = cam->height - y0 > e->step_y ? y0 + e->step_y : cam->height;
     uint32_t row = y0 + (y1 - y0) / 2;
     uint64_t cost = 0;

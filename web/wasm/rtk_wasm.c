@@ -122,7 +122,7 @@ EXPORT(rtk_open_blob) int rtk_open_blob(const uint8_t *bytes, size_t size, uint3
 /* Renders columns [x0, x1) of rows [y0, y1) into rtk_image(). */
 EXPORT(rtk_render_region) void rtk_render_region(uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1)
 {
-    rt_tracer tracer = {&built.scene, true, NULL};
+    rt_tracer tracer = {.scene = &built.scene, .use_bvh = true};
     rt_render_region(&tracer, x0, y0, x1, y1, image);
 }
 
