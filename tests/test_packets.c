@@ -3,11 +3,11 @@
  * in packets (core/render_packet.c) is the same bytes as one traced pixel by pixel,
  * under every kernel this CPU runs. */
 #include "bvh.h"
-#include "scene_query.h"
 #include "cli/cli.h"
 #include "load/scene_open.h"
 #include "reference.h"
 #include "render.h"
+#include "scene_query.h"
 #include "sha256.h"
 #include "thread/kernel.h"
 #include <criterion/criterion.h>
