@@ -3,6 +3,7 @@
 #   make fuzz FUZZ_SECONDS=N      runs each target N seconds from its seed corpus
 #   make fuzz-long FUZZ_SECONDS=N  fresh random seeds, N s per target and backend; keeps the
 #                                 minimised corpus in fuzz/corpus/ (fuzz/long.sh)
+#   make fuzz-coverage            line coverage of core/ per target from its corpus (llvm-cov)
 #   make check-asan               the Criterion suite and rtk under ASan+UBSan
 # Core targets are built for every scalar backend present (double, and fixed once
 # core/real_fixed.h exists); the parser targets (yaml, ply, png) for double only.
@@ -33,7 +34,7 @@ fuzz_targets = $(if $(filter fixed,$(1)),$(FUZZ_CORE_TARGETS),$(FUZZ_ALL))
 fuzz_bins = $(foreach v,$(1),$(addprefix $(FUZZ_BUILD)/$(v)/,$(call fuzz_targets,$(v))))
 FUZZ_BINS := $(call fuzz_bins,$(FUZZ_VARIANTS))
 
-.PHONY: fuzz-deps fuzz-build fuzz-build-run fuzz fuzz-long fuzz-clean check-asan
+.PHONY: fuzz-deps fuzz-build fuzz-build-run fuzz fuzz-long fuzz-coverage fuzz-clean check-asan
 clean: fuzz-clean
 
 define FUZZ_VARIANT_RULES
@@ -96,8 +97,15 @@ fuzz-long: fuzz-build-run
 	  $(filter $(addprefix %/,$(FUZZ_TARGETS)),$(call fuzz_bins,$(FUZZ_RUN_VARIANTS)))
 	fuzz/long.sh --totals
 
+# Line coverage of core/ per target from the corpora alone (fuzz/coverage.sh, llvm-14).
+FUZZ_COV_BUILD := build-fuzz-cov
+fuzz-coverage: fuzz-deps
+	$(MAKE) FUZZ_BUILD=$(FUZZ_COV_BUILD) FUZZ_SAN="-fprofile-instr-generate -fcoverage-mapping" \
+	  $(subst $(FUZZ_BUILD)/,$(FUZZ_COV_BUILD)/,$(FUZZ_BINS))
+	fuzz/coverage.sh $(FUZZ_COV_BUILD) $(subst $(FUZZ_BUILD)/,$(FUZZ_COV_BUILD)/,$(FUZZ_BINS))
+
 fuzz-clean:
-	rm -rf $(FUZZ_BUILD) build-asan build-asan-fixed
+	rm -rf $(FUZZ_BUILD) $(FUZZ_COV_BUILD) build-asan build-asan-fixed
 
 ASAN_BUILD := build-asan$(if $(filter fixed,$(RT_REAL)),-fixed)
 ASAN_FLAGS := -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
