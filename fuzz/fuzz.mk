@@ -26,7 +26,7 @@ FUZZ_VARIANTS ?= double $(if $(wildcard core/real_fixed.h),fixed)
 FUZZ_RUN_VARIANTS ?= $(FUZZ_VARIANTS)
 
 # The top-level flags without the backend switch; each variant adds its own.
-FUZZ_CORE_CFLAGS := $(filter-out -DRT_REAL_FIXED,$(CORE_CFLAGS)) $(FUZZ_SAN) -fsanitize=fuzzer-no-link
+FUZZ_CORE_CFLAGS := $(filter-out -DRT_REAL_FIXED,$(CORE_CFLAGS)) -DRT_ASSERTS $(FUZZ_SAN) -fsanitize=fuzzer-no-link
 FUZZ_PLATFORM_CFLAGS := $(filter-out -DRT_REAL_FIXED,$(PLATFORM_CFLAGS)) $(FUZZ_SAN) -fsanitize=fuzzer-no-link
 fuzz_real_flag = $(if $(filter fixed,$(1)),-DRT_REAL_FIXED)
 fuzz_targets = $(if $(filter fixed,$(1)),$(FUZZ_CORE_TARGETS),$(FUZZ_ALL))
@@ -112,7 +112,7 @@ ASAN_FLAGS := -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno
 
 # OPT reaches both the compile and the link lines of the top-level rules.
 check-asan: deps
-	$(MAKE) BUILD=$(ASAN_BUILD) OPT="$(ASAN_FLAGS)" $(ASAN_BUILD)/rtk $(ASAN_BUILD)/rtk-tests
+	$(MAKE) BUILD=$(ASAN_BUILD) OPT="$(ASAN_FLAGS)" ASSERTS=1 $(ASAN_BUILD)/rtk $(ASAN_BUILD)/rtk-tests
 	fuzz/sanitized.sh $(ASAN_BUILD)/sanitizer-reports $(ASAN_BUILD)/rtk-tests --jobs 2
 
 -include $(wildcard $(FUZZ_BUILD)/*/*/*.d)

@@ -174,7 +174,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     rt_build_error err;
     if (fz_build(&desc, &scene, &err) != RT_OK) return 0;
     uint8_t with_bvh[SIDE * SIDE * 3], without[SIDE * SIDE * 3], tiles[SIDE * SIDE * 3];
-    rt_tracer tr = {&scene, true, NULL};
+    rt_tracer tr = {.scene = &scene, .use_bvh = true};
     rt_render_region(&tr, 0, 0, SIDE, SIDE, with_bvh);
     /* Tiles in another order: the bytes of a pixel depend on nothing else. */
     rt_render_region(&tr, 0, SIDE / 2, SIDE, SIDE, tiles);

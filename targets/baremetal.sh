@@ -30,7 +30,7 @@ build-fixed/rtk pack "$scene" -o "$out/scene.rtscene"
 # objcopy names the blob's symbols after its file name: _binary_scene_rtscene_start/_end.
 (cd "$out" && arm-none-eabi-objcopy -I binary -O elf32-littlearm -B arm scene.rtscene scene.o)
 arm-none-eabi-gcc -std=c11 -O2 -g -mcpu=cortex-m3 -mthumb -mfloat-abi=soft \
-  -ffreestanding -fno-builtin -nostdlib -ffp-contract=off -DRT_REAL_FIXED -Icore \
+  -ffreestanding -fno-builtin -nostdlib -ffp-contract=off -DRT_REAL_FIXED -Iinclude -Icore \
   -Wall -Wextra -T targets/cortex-m/mps2.ld \
   targets/cortex-m/*.c $(make -s core-sources RT_REAL=fixed) "$out/scene.o" -lgcc \
   -o "$out/rtk.elf"

@@ -36,7 +36,7 @@ core_object() {
   [ ${#sources[@]} -gt 0 ] || { echo "    make core-sources listed nothing"; return 1; }
   mkdir -p "$work/$name"
   for src in "${sources[@]}"; do
-    if "$cc" -std=c11 -O2 -ffreestanding -fno-builtin -nostdlib -ffp-contract=off -fno-math-errno "$@" \
+    if "$cc" -std=c11 -O2 -ffreestanding -fno-builtin -nostdlib -ffp-contract=off -fno-math-errno -Iinclude "$@" \
       -c "$src" -o "$work/$name/$(basename "$src" .c).o" 2>"$work/$name.err"; then
       compiled=$((compiled + 1))
     else
