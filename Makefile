@@ -170,15 +170,18 @@ demo: deps
 	@echo "wrote demo.png"
 
 # The unit and reference tests on the double build, then the golden render hashes
-# of both builds (the fixed build also runs its own math and precision suites).
+# of both builds (the fixed build also runs its own math, precision and reference
+# suites, and must stay within 1 level of the double build on every golden scene).
 check: deps
 	$(MAKE) build/rtk build/rtk-tests
 	$(MAKE) RT_REAL=fixed build-fixed/rtk build-fixed/rtk-tests
 	build/rtk-tests --jobs 2
 	build-fixed/rtk-tests --jobs 2 --filter 'real_fixed/*'
 	build-fixed/rtk-tests --jobs 2 --filter 'precision/*'
+	build-fixed/rtk-tests --jobs 2 --filter 'reference/*'
 	tests/golden.sh check build/rtk double
 	tests/golden.sh check build-fixed/rtk fixed
+	targets/fixed_vs_double.sh
 	tests/bad/run.sh build/rtk
 	$(MAKE) check-examples
 	tests/install.sh
@@ -190,9 +193,13 @@ check-determinism: deps
 	targets/determinism.sh double fixed
 	targets/baremetal.sh
 
-# Rewrites tests/golden/$(RT_REAL).sha256; say why in the commit that changes it.
+# Rewrites tests/golden/$(RT_REAL).sha256 and re-pins the determinism matrix's 64x64
+# hashes (matrix-$(RT_REAL).sha256; the fixed build also the bare-metal hash), all
+# from this build: say why in the commit that changes them.
 bless: $(BUILD)/rtk
 	tests/golden.sh bless $(BUILD)/rtk $(RT_REAL)
+	targets/determinism.sh --bless $(RT_REAL)
+	$(if $(filter fixed,$(RT_REAL)),targets/baremetal.sh --bless)
 
 # The C sources in the style of .clang-format (clang-format 14): `make format` rewrites
 # them, `make format-check` lists every file that differs and fails.
