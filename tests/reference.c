@@ -23,7 +23,7 @@ bool rt_test_render(const char *scene_path, unsigned threads, bool use_bvh, rtp_
     rtp_scene built;
     if (rtp_scene_open(scene_path, &opt, &built, err, err_size) != 0) return false;
     bool ok = rtp_image_alloc(out, built.scene.camera.width, built.scene.camera.height, "the image");
-    rt_tracer tracer = {&built.scene, use_bvh, NULL};
+    rt_tracer tracer = {.scene = &built.scene, .use_bvh = use_bvh};
     rtp_threads_options popt = {threads, 0, false, NULL};
     ok = ok && rtp_threads_render(&tracer, &popt, out->rgb);
     rtp_scene_close(&built);

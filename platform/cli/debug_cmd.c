@@ -16,7 +16,6 @@
 /* Rays (and light records) logged per run: far more than a Whitted tree of one pixel
  * needs at the default settings; deep, many-light or heavily sampled pixels are cut
  * short with a note, and their colour stays exact. */
-#define LOG_CAPACITY (1u << 16)
 
 static const char usage[] =
     "usage: rtk debug SCENE.yaml --pixel X,Y [options]\n"
@@ -111,7 +110,7 @@ static int check_pixel(debug_args *a, const rt_camera *cam)
 /* img: the scene's image (allocated by rtp_scene_open), rendered here into the SVG. */
 static int write_svg(const debug_args *a, const rtp_pixel_trace *pt, rtp_image *img)
 {
-    rt_tracer tracer = {&pt->built->scene, true, NULL};
+    rt_tracer tracer = {.scene = &pt->built->scene, .use_bvh = true};
     rtp_threads_options popt = {0, 0, isatty(STDERR_FILENO) != 0, NULL};
     char err[RTP_ERR_SIZE];
     if (!rtp_threads_render(&tracer, &popt, img->rgb)) {
@@ -138,7 +137,7 @@ int rtp_cmd_debug(int argc, char **argv)
     if (rc != RTP_EXIT_OK) return rc;
     rtp_pixel_trace pt;
     rc = check_pixel(&a, &built.scene.camera);
-    if (rc == RTP_EXIT_OK && !rtp_pixel_trace_run(&pt, &built, a.x, a.y, a.sample, LOG_CAPACITY)) {
+    if (rc == RTP_EXIT_OK && !rtp_pixel_trace_run(&pt, &built, a.x, a.y, a.sample, RTP_PIXEL_TRACE_CAPACITY)) {
         rtp_message("debug", "%s", rtp_mem_refusal());
         rc = RTP_EXIT_MEMORY;
     }
@@ -146,7 +145,8 @@ int rtp_cmd_debug(int argc, char **argv)
         rtp_scene_close(&built);
         return rc;
     }
-    if (pt.log.overflow) rtp_message("debug", "the ray log is full: only the first %u rays are shown", LOG_CAPACITY);
+    if (pt.log.overflow)
+        rtp_message("debug", "the ray log is full: only the first %u rays are shown", RTP_PIXEL_TRACE_CAPACITY);
     if (a.json)
         rtp_debug_print_json(stdout, &pt);
     else

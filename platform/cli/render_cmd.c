@@ -4,14 +4,17 @@
 #include "cli/cli.h"
 #include "cli/exit_codes.h"
 #include "cli/message.h"
+#include "cli/render_part.h"
 #include "cli/signals.h"
 #include "image/image.h"
 #include "load/input_file.h"
 #include "load/scene_open.h"
+#include "part/part_file.h"
 #include "sha256.h"
 #include "thread/threads.h"
 #include <stdio.h>
 #include <string.h>
+#include <strings.h>
 #include <unistd.h>
 
 static const char usage[] = "usage: rtk render SCENE.yaml [-o OUT.png|OUT.ppm] [options]\n"
@@ -27,6 +30,10 @@ static const char usage[] = "usage: rtk render SCENE.yaml [-o OUT.png|OUT.ppm] [
                             "  --tile N            tile side in pixels (default 32); the image does not depend on it\n"
                             "  --hash              print the render hash (SHA-256 of the P6 PPM bytes) on stdout\n"
                             "  --no-bvh            test every primitive for every ray (slow; the image is identical)\n"
+                            "  --region X0,Y0,X1,Y1  render only columns X0..X1-1 of rows Y0..Y1-1 of the frame, as\n"
+                            "                      a part for rtk stitch (-o PART.png)\n"
+                            "  --part I/N          render part I of N (I counts from 0: 0..N-1), a band of rows;\n"
+                            "                      the cut is the same on every machine (docs/distributed.md)\n"
                             "  --quiet             no progress bar\n"
                             "  --progress          progress bar even when stderr is not a terminal\n"
                             "\n"
@@ -37,8 +44,15 @@ typedef struct {
     const char *scene, *output;
     rtp_scene_options build;
     rtp_threads_options parallel;
+    rtp_part_request part;
     bool hash, use_bvh, quiet, force_progress;
 } render_args;
+
+static bool ends_with_png(const char *path)
+{
+    size_t n = strlen(path);
+    return n >= 4 && !strcasecmp(path + n - 4, ".png");
+}
 
 static int parse_args(int argc, char **argv, render_args *a)
 {
@@ -52,6 +66,9 @@ static int parse_args(int argc, char **argv, render_args *a)
         int common = rtp_cli_common_option("render", usage, argc, argv, &i, &a->build);
         if (common < 0) return -common;
         if (common > 0) continue;
+        int part = rtp_part_request_option("render", argc, argv, &i, &a->part);
+        if (part < 0) return -part;
+        if (part > 0) continue;
         if (!strcmp(arg, "-o") || !strcmp(arg, "--output")) {
             if (!val) return rtp_cli_usage_error("render", "missing file after", arg);
             a->output = val, i++;
@@ -80,6 +97,10 @@ static int parse_args(int argc, char **argv, render_args *a)
     if (!a->output && !a->hash) return rtp_cli_usage_error("render", "nothing to do: give -o FILE and/or --hash", NULL);
     if (a->hash && a->output && !strcmp(a->output, "-"))
         return rtp_cli_usage_error("render", "--hash and -o - would both write to standard output", NULL);
+    if (a->part.wanted && a->hash)
+        return rtp_cli_usage_error("render", "--hash is the whole frame's: rtk stitch --hash gives it for parts", NULL);
+    if (a->part.wanted && !ends_with_png(a->output))
+        return rtp_cli_usage_error("render", "a part is a PNG file: expected -o NAME.png, not", a->output);
     return RTP_EXIT_OK;
 }
 
@@ -103,22 +124,36 @@ int rtp_cmd_render(int argc, char **argv)
     a.build.with_image = true;
     rc = rtp_cli_open_scene("render", a.scene, &a.build, &built);
     if (rc != RTP_EXIT_OK) return rc;
+    const rt_camera *cam = &built.scene.camera;
+    rtp_part part = {.region = {0, 0, cam->width, cam->height}};
+    if (a.part.wanted) rc = rtp_part_plan("render", a.scene, &built, &a.part, a.build.threads, &part);
+    if (rc != RTP_EXIT_OK) {
+        rtp_scene_close(&built);
+        return rc;
+    }
+    /* The frame's image, allocated under the cap before the arena; a part uses its first rows. */
     rtp_image img = built.image;
     built.image = (rtp_image){0};
-    rt_tracer tracer = {&built.scene, a.use_bvh, NULL};
+    img.width = part.region.x1 - part.region.x0;
+    img.height = part.region.y1 - part.region.y0;
+    rt_tracer tracer = {.scene = &built.scene, .use_bvh = a.use_bvh};
     a.parallel.progress = !a.quiet && (a.force_progress || isatty(STDERR_FILENO));
     a.parallel.cancel = rtp_signals_defer(); /* stop between tiles, and free what the render holds */
-    bool complete = rtp_threads_render(&tracer, &a.parallel, img.rgb), stopped = *a.parallel.cancel;
+    bool complete = rtp_threads_render_region(&tracer, &a.parallel, part.region, img.rgb), stopped = *a.parallel.cancel;
     rtp_scene_close(&built);
     if (!complete || stopped) {
         rtp_image_free(&img);
+        rtp_part_free(&part);
         if (stopped) return rtp_signals_stopped();
         rtp_message("render", "%s: no memory for the render's threads", scene);
         return RTP_EXIT_MEMORY;
     }
     rtp_signals_immediate();
     char err[RTP_ERR_SIZE];
-    if (a.output && !rtp_image_write(a.output, &img, err, sizeof err)) {
+    bool written = !a.output || (a.part.wanted ? rtp_part_write(a.output, &part, img.rgb, err, sizeof err)
+                                               : rtp_image_write(a.output, &img, err, sizeof err));
+    rtp_part_free(&part);
+    if (!written) {
         rtp_message("render", "%s", err);
         rc = RTP_EXIT_OUTPUT;
     }
