@@ -8,6 +8,7 @@
 #include "cli/version.h"
 #include "image/image.h"
 #include "load/scene_open.h"
+#include "mem/mem.h"
 #include "part/part_cut.h"
 #include "part/part_file.h"
 #include "tmpdir.h"
@@ -435,7 +436,7 @@ static void forge(const char *from, const char *to, rtp_part_field field, const 
     rgb[0] ^= flip_pixel;
     cr_assert(rtp_part_write(to, &p, rgb, err, sizeof err), "%s", err);
     rtp_part_free(&p);
-    free(rgb);
+    rtp_mem_free(rgb);
 }
 
 Test(stitch, refuses_a_part_of_another_build_or_version)

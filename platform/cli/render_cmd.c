@@ -99,6 +99,8 @@ static int parse_args(int argc, char **argv, render_args *a)
         return rtp_cli_usage_error("render", "--hash and -o - would both write to standard output", NULL);
     if (a->part.wanted && a->hash)
         return rtp_cli_usage_error("render", "--hash is the whole frame's: rtk stitch --hash gives it for parts", NULL);
+    if (a->part.wanted && !strcmp(a->scene, "-")) /* parts carry the scene file's digest, read after loading */
+        return rtp_cli_usage_error("render", "a part digests the scene file: give its path, not", a->scene);
     if (a->part.wanted && !ends_with_png(a->output))
         return rtp_cli_usage_error("render", "a part is a PNG file: expected -o NAME.png, not", a->output);
     return RTP_EXIT_OK;

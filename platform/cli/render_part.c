@@ -3,11 +3,12 @@
 
 #include "cli/cli.h"
 #include "cli/exit_codes.h"
+#include "cli/message.h"
 #include "cli/version.h"
+#include "mem/mem.h"
 #include "part/part_cut.h"
 #include "part/part_identity.h"
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
 int rtp_part_request_option(const char *cmd, int argc, char **argv, int *i, rtp_part_request *req)
@@ -44,16 +45,16 @@ static int place(const char *cmd, const rtp_scene *scene, const rtp_part_request
                  cam->height);
         return rtp_cli_usage_error(cmd, msg, NULL);
     }
-    uint32_t *starts = malloc(((size_t)req->count + 1) * sizeof *starts);
+    uint32_t *starts = rtp_mem_calloc((size_t)req->count + 1, sizeof *starts, "the cut");
     if (!starts || !rtp_part_cut(&scene->scene, req->count, threads, starts)) {
-        free(starts);
-        fprintf(stderr, "rtk %s: out of memory cutting the frame into %u parts\n", cmd, req->count);
+        rtp_mem_free(starts);
+        rtp_message(cmd, "cutting the frame into %u parts: %s", req->count, rtp_mem_refusal());
         return RTP_EXIT_MEMORY;
     }
     part->region = rtp_part_band(&scene->scene, starts, req->index);
     part->index = req->index;
     part->count = req->count;
-    free(starts);
+    rtp_mem_free(starts);
     return RTP_EXIT_OK;
 }
 
@@ -64,12 +65,12 @@ int rtp_part_plan(const char *cmd, const char *scene_path, const rtp_scene *scen
     memset(part, 0, sizeof *part);
     int rc = rtp_part_identify(scene_path, rtp_version_line(), scene, part, err, sizeof err);
     if (rc != RTP_EXIT_OK) {
-        fprintf(stderr, "rtk %s: %s\n", cmd, err);
+        rtp_message(cmd, "%s", err);
         return rc;
     }
     rc = place(cmd, scene, req, threads, part);
     if (rc == RTP_EXIT_OK && !rtp_part_format_place(part)) {
-        fprintf(stderr, "rtk %s: %s: out of memory describing the part\n", cmd, scene_path);
+        rtp_message(cmd, "%s: %s", scene_path, rtp_mem_refusal());
         rc = RTP_EXIT_MEMORY;
     }
     if (rc != RTP_EXIT_OK) rtp_part_free(part);

@@ -5,8 +5,12 @@
 
 #include "cli/cli.h"
 #include "cli/exit_codes.h"
+#include "cli/message.h"
+#include "cli/signals.h"
 #include "cli/version.h"
 #include "image/image.h"
+#include "load/input_file.h"
+#include "mem/mem.h"
 #include "part/part_cut.h"
 #include "part/part_file.h"
 #include "part/part_identity.h"
@@ -39,9 +43,12 @@ static const char usage[] =
     "                      render: the problem goes to stderr); for re-rendering\n"
     "  --tiles N, --parts N  the part count N for --missing (as in --part I/N)\n"
     "  --threads N         threads for --missing's cut estimate (default: all cores)\n"
+    "  --max-memory SIZE   in every mode: the cap on all the memory rtk allocates (default 4G)\n"
     "With --missing, the scene options give the render's settings, as for rtk render:\n" RTP_CLI_SCENE_OPTIONS_HELP "\n"
-    "Exit codes: 0 ok, 2 bad arguments, 3 a part or scene is missing, unreadable, invalid\n"
-    "or does not fit the others, 4 output not writable, 5 out of memory.\n";
+    "Parts and the scene must be regular files ('-' is not one: a part digests its scene\n"
+    "file). Exit codes: 0 ok, 2 bad arguments (also -o naming one of the parts), 3 a part\n"
+    "or scene is missing, unreadable, invalid or does not fit the others, 4 output or\n"
+    "standard output not writable, 5 over the memory cap, 6 interrupted.\n";
 
 typedef enum { MODE_STITCH, MODE_CHECK, MODE_MISSING } stitch_mode;
 
@@ -59,7 +66,7 @@ static int parse_args(int argc, char **argv, stitch_args *a)
     memset(a, 0, sizeof *a);
     a->build = rtp_scene_default_options();
     a->parts = calloc((size_t)argc, sizeof *a->parts);
-    if (!a->parts) return RTP_EXIT_MEMORY;
+    if (!a->parts) return rtp_message("stitch", "out of memory"), RTP_EXIT_MEMORY;
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
         int common = rtp_cli_common_option("stitch", usage, argc, argv, &i, &a->build);
@@ -94,6 +101,8 @@ static int parse_args(int argc, char **argv, stitch_args *a)
         if (!a->tiles) return rtp_cli_usage_error("stitch", "--missing needs the part count: --tiles N", NULL);
         if (a->output || a->hash) return rtp_cli_usage_error("stitch", "--missing writes no image", NULL);
         a->scene = a->parts[0];
+        if (!strcmp(a->scene, "-"))
+            return rtp_cli_usage_error("stitch", "--missing digests the scene file: give its path, not", a->scene);
         return RTP_EXIT_OK;
     }
     if (a->part_count == 0) return rtp_cli_usage_error("stitch", "no part files given", NULL);
@@ -102,16 +111,18 @@ static int parse_args(int argc, char **argv, stitch_args *a)
         return rtp_cli_usage_error("stitch", "--check writes no image", NULL);
     if (a->mode == MODE_STITCH && !a->output && !a->hash)
         return rtp_cli_usage_error("stitch", "nothing to do: give -o FILE and/or --hash", NULL);
+    if (a->hash && a->output && !strcmp(a->output, "-"))
+        return rtp_cli_usage_error("stitch", "--hash and -o - would both write to standard output", NULL);
     return RTP_EXIT_OK;
 }
 
-/* Reads one part; on failure prints "rtk stitch: NAME: problem". */
-static bool read_part(const char *name, rtp_part *p, uint8_t **rgb)
+/* Reads one part; on failure prints "rtk stitch: NAME: problem" and gives the exit code. */
+static int read_part(const char *name, rtp_part *p, uint8_t **rgb)
 {
     char err[RTP_ERR_SIZE];
-    if (rtp_part_read(name, p, rgb, err, sizeof err)) return true;
-    fprintf(stderr, "rtk stitch: %s: %s\n", name, err);
-    return false;
+    if (rtp_part_read(name, p, rgb, err, sizeof err)) return RTP_EXIT_OK;
+    rtp_message("stitch", "%s: %s", name, err);
+    return rtp_load_failure_code();
 }
 
 static void blit(uint8_t *frame, const rtp_part *p, const uint8_t *rgb)
@@ -127,37 +138,39 @@ static int gather(const stitch_args *a, rtp_part *parts, rtp_image *frame)
     char err[RTP_ERR_SIZE];
     for (uint32_t i = 0; i < a->part_count; i++) {
         uint8_t *rgb = NULL;
-        if (!read_part(a->parts[i], &parts[i], &rgb)) return RTP_EXIT_INPUT;
+        int rc = read_part(a->parts[i], &parts[i], &rgb);
+        if (rc != RTP_EXIT_OK) return rc;
         if (i > 0 && !rtp_stitch_same_render(&parts[i], a->parts[i], &parts[0], a->parts[0], err, sizeof err)) {
-            free(rgb);
-            fprintf(stderr, "rtk stitch: %s\n", err);
+            rtp_mem_free(rgb);
+            rtp_message("stitch", "%s", err);
             return RTP_EXIT_INPUT;
         }
-        if (i == 0)
-            *frame = (rtp_image){parts[0].width, parts[0].height, calloc((size_t)parts[0].width * parts[0].height, 3)};
-        if (!frame->rgb) {
-            free(rgb);
-            fprintf(stderr, "rtk stitch: no memory for a %ux%u frame\n", parts[0].width, parts[0].height);
+        if (i == 0 && !rtp_image_alloc(frame, parts[0].width, parts[0].height, "the frame")) {
+            rtp_mem_free(rgb);
+            rtp_message("stitch", "%s: %s", a->parts[0], rtp_mem_refusal());
             return RTP_EXIT_MEMORY;
         }
         blit(frame->rgb, &parts[i], rgb);
-        free(rgb);
+        rtp_mem_free(rgb);
     }
     if (rtp_stitch_coverage(parts, a->parts, a->part_count, err, sizeof err)) return RTP_EXIT_OK;
-    fprintf(stderr, "rtk stitch: %s\n", err);
+    rtp_message("stitch", "%s", err);
     return RTP_EXIT_INPUT;
 }
 
 static int stitch(const stitch_args *a)
 {
-    rtp_part *parts = calloc(a->part_count, sizeof *parts);
-    if (!parts) return RTP_EXIT_MEMORY;
+    rtp_part *parts = rtp_mem_calloc(a->part_count, sizeof *parts, "the parts' descriptions");
+    if (!parts) {
+        rtp_message("stitch", "%s", rtp_mem_refusal());
+        return RTP_EXIT_MEMORY;
+    }
     rtp_image frame = {0};
     int rc = gather(a, parts, &frame);
     char err[RTP_ERR_SIZE];
     if (rc == RTP_EXIT_OK && a->output && !rtp_image_write(a->output, &frame, err, sizeof err)) {
-        fprintf(stderr, "rtk stitch: %s\n", err);
-        rc = RTP_EXIT_OUTPUT;
+        rtp_message("stitch", "%s", err);
+        rc = rtp_mem_refused() ? RTP_EXIT_MEMORY : RTP_EXIT_OUTPUT;
     }
     if (rc == RTP_EXIT_OK && a->hash) {
         uint8_t digest[32];
@@ -165,9 +178,10 @@ static int stitch(const stitch_args *a)
         rt_sha256_ppm(frame.rgb, frame.width, frame.height, digest);
         rtp_part_hex(digest, hex);
         puts(hex);
+        rc = rtp_cli_flush_stdout("stitch");
     }
     for (uint32_t i = 0; i < a->part_count; i++) rtp_part_free(&parts[i]);
-    free(parts);
+    rtp_mem_free(parts);
     rtp_image_free(&frame);
     return rc;
 }
@@ -177,10 +191,11 @@ static int check(const stitch_args *a)
     int rc = RTP_EXIT_OK;
     for (uint32_t i = 0; i < a->part_count; i++) {
         rtp_part p;
-        if (read_part(a->parts[i], &p, NULL))
+        int code = read_part(a->parts[i], &p, NULL);
+        if (code == RTP_EXIT_OK)
             rtp_part_free(&p);
-        else
-            rc = RTP_EXIT_INPUT;
+        else if (rc == RTP_EXIT_OK)
+            rc = code;
     }
     return rc;
 }
@@ -193,17 +208,17 @@ static bool part_present(const char *name, const rtp_part *want, const char *sce
     rtp_part p;
     char err[RTP_ERR_SIZE];
     if (!rtp_part_read(name, &p, NULL, err, sizeof err)) {
-        fprintf(stderr, "rtk stitch: %s: %s; to render again\n", name, err);
+        rtp_message("stitch", "%s: %s; to render again", name, err);
         return false;
     }
     bool ok = rtp_stitch_same_render(&p, name, want, scene, err, sizeof err);
     if (!ok) {
-        fprintf(stderr, "rtk stitch: %s; to render again\n", err);
+        rtp_message("stitch", "%s; to render again", err);
     } else if (strcmp(p.text[RTP_PART_REGION], want->text[RTP_PART_REGION]) ||
                strcmp(p.text[RTP_PART_INDEX], want->text[RTP_PART_INDEX])) {
-        fprintf(stderr, "rtk stitch: %s: holds part %s, region %s, not part %s, region %s; to render again\n", name,
-                p.text[RTP_PART_INDEX], p.text[RTP_PART_REGION], want->text[RTP_PART_INDEX],
-                want->text[RTP_PART_REGION]);
+        rtp_message("stitch", "%s: holds part %s, region %s, not part %s, region %s; to render again", name,
+                    p.text[RTP_PART_INDEX], p.text[RTP_PART_REGION], want->text[RTP_PART_INDEX],
+                    want->text[RTP_PART_REGION]);
         ok = false;
     }
     rtp_part_free(&p);
@@ -213,10 +228,10 @@ static bool part_present(const char *name, const rtp_part *want, const char *sce
 /* Prints the index of every part of want's render whose file is missing or not valid. */
 static int list_missing(const stitch_args *a, const rtp_scene *built, rtp_part *want)
 {
-    uint32_t *starts = malloc(((size_t)a->tiles + 1) * sizeof *starts);
+    uint32_t *starts = rtp_mem_calloc((size_t)a->tiles + 1, sizeof *starts, "the cut");
     if (!starts || !rtp_part_cut(&built->scene, a->tiles, a->threads, starts)) {
-        free(starts);
-        fprintf(stderr, "rtk stitch: out of memory cutting the frame into %u parts\n", a->tiles);
+        rtp_mem_free(starts);
+        rtp_message("stitch", "cutting the frame into %u parts: %s", a->tiles, rtp_mem_refusal());
         return RTP_EXIT_MEMORY;
     }
     char reference[RTP_ERR_SIZE];
@@ -228,15 +243,15 @@ static int list_missing(const stitch_args *a, const rtp_scene *built, rtp_part *
         want->count = a->tiles;
         char *name = rtp_part_file_name(a->dir, i, a->tiles);
         if (!name || !rtp_part_format_place(want)) {
-            fprintf(stderr, "rtk stitch: out of memory\n");
+            rtp_message("stitch", "%s", name ? rtp_mem_refusal() : "out of memory");
             rc = RTP_EXIT_MEMORY;
         } else if (!part_present(name, want, reference)) {
             printf("%u\n", i);
         }
         free(name);
     }
-    free(starts);
-    return rc;
+    rtp_mem_free(starts);
+    return rc == RTP_EXIT_OK ? rtp_cli_flush_stdout("stitch") : rc;
 }
 
 static int missing(const stitch_args *a)
@@ -254,7 +269,7 @@ static int missing(const stitch_args *a)
     char err[RTP_ERR_SIZE];
     if (rc == RTP_EXIT_OK &&
         (rc = rtp_part_identify(a->scene, rtp_version_line(), &built, &want, err, sizeof err)) != RTP_EXIT_OK)
-        fprintf(stderr, "rtk stitch: %s\n", err);
+        rtp_message("stitch", "%s", err);
     if (rc == RTP_EXIT_OK) rc = list_missing(a, &built, &want);
     rtp_part_free(&want);
     rtp_scene_close(&built);
@@ -265,7 +280,12 @@ int rtp_cmd_stitch(int argc, char **argv)
 {
     stitch_args a;
     int rc = parse_args(argc, argv, &a);
-    if (rc == RTP_EXIT_OK) rc = a.mode == MODE_STITCH ? stitch(&a) : a.mode == MODE_CHECK ? check(&a) : missing(&a);
+    if (rc == RTP_EXIT_OK) {
+        rtp_signals_install("stitch", a.scene);
+        rtp_mem_set_cap(a.build.max_memory);
+        if (a.output) rtp_input_forbid(a.output); /* before any part is read */
+        rc = a.mode == MODE_STITCH ? stitch(&a) : a.mode == MODE_CHECK ? check(&a) : missing(&a);
+    }
     free(a.parts);
     return rc;
 }

@@ -44,7 +44,7 @@ static bool check_size(const char *path, uint32_t w, uint32_t h, char *err, size
 static void *codec_malloc(size_t size) { return rtp_mem_alloc(size, "the PNG codec's buffers"); }
 static void *codec_realloc(void *p, size_t size) { return rtp_mem_realloc(p, size, "the PNG codec's buffers"); }
 static void *codec_calloc(size_t count, size_t size) { return rtp_mem_calloc(count, size, "the PNG codec's buffers"); }
-static spng_ctx *codec_new(int flags)
+spng_ctx *rtp_png_ctx_new(int flags)
 {
     struct spng_alloc counted = {codec_malloc, codec_realloc, codec_calloc, rtp_mem_free};
     return spng_ctx_new2(&counted, flags);
@@ -61,7 +61,7 @@ bool rtp_image_alloc(rtp_image *img, uint32_t width, uint32_t height, const char
 
 static bool png_decode(const char *path, const uint8_t *data, size_t size, rtp_image *out, char *err, size_t err_size)
 {
-    spng_ctx *ctx = codec_new(0);
+    spng_ctx *ctx = rtp_png_ctx_new(0);
     if (!ctx) return fail(err, err_size, path, "%s", rtp_mem_refusal());
     struct spng_ihdr ihdr;
     size_t len = 0;
@@ -190,7 +190,7 @@ static uint8_t *ppm_encode(const rtp_image *img, size_t rgb_size, size_t *size)
 /* Returns the PNG (allocated by spng through rtp_mem) or NULL with *rc set. */
 static void *png_encode(const rtp_image *img, size_t rgb_size, size_t *size, int *rc)
 {
-    spng_ctx *ctx = codec_new(SPNG_CTX_ENCODER);
+    spng_ctx *ctx = rtp_png_ctx_new(SPNG_CTX_ENCODER);
     if (!ctx) {
         *rc = SPNG_EMEM;
         return NULL;

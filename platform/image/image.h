@@ -27,6 +27,10 @@ bool rtp_image_read_input(rtp_input *in, rtp_image *out, char *err, size_t err_s
 bool rtp_image_write(const char *path, const rtp_image *img, char *err, size_t err_size);
 void rtp_image_free(rtp_image *img);
 
+/* A libspng context (SPNG_CTX_ENCODER or 0) whose allocations count against --max-memory,
+ * for other PNG code (rtk's parts); NULL when even that does not fit. */
+struct spng_ctx *rtp_png_ctx_new(int flags);
+
 /* The PNG file of img in memory (for embedding): rtp_mem bytes, released with rtp_mem_free;
  * NULL with one line in err on failure. */
 void *rtp_image_encode_png(const rtp_image *img, size_t *size, char *err, size_t err_size);

@@ -1,6 +1,7 @@
 /* The fields of a part and their text forms; see part.h. */
 #include "part/part.h"
 
+#include "mem/mem.h"
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -18,15 +19,15 @@ const char *const rtp_part_field_names[RTP_PART_FIELDS] = {
 
 void rtp_part_free(rtp_part *p)
 {
-    for (int f = 0; f < RTP_PART_FIELDS; f++) free(p->text[f]);
+    for (int f = 0; f < RTP_PART_FIELDS; f++) rtp_mem_free(p->text[f]);
     memset(p, 0, sizeof *p);
 }
 
 bool rtp_part_set(rtp_part *p, rtp_part_field f, const char *value)
 {
-    char *copy = strdup(value);
+    char *copy = rtp_mem_strdup(value, "a part's text");
     if (!copy) return false;
-    free(p->text[f]);
+    rtp_mem_free(p->text[f]);
     p->text[f] = copy;
     return true;
 }
@@ -103,9 +104,10 @@ bool rtp_part_parse_place(rtp_part *p, char *err, size_t err_size)
         return fail(err, err_size, "malformed '%s' text '%s'", rtp_part_keys[RTP_PART_REGION], region);
     if (p->region.x1 > p->width || p->region.y1 > p->height)
         return fail(err, err_size, "its region %s lies outside its %s frame", region, frame);
+    /* rtk render cuts a frame into at most as many parts as it has rows. */
     if (!strcmp(index, "region"))
         p->index = p->count = 0;
-    else if (!rtp_part_parse_index(index, UINT32_MAX, &p->index, &p->count))
+    else if (!rtp_part_parse_index(index, p->height, &p->index, &p->count))
         return fail(err, err_size, "malformed '%s' text '%s'", rtp_part_keys[RTP_PART_INDEX], index);
     return true;
 }

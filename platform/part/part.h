@@ -30,7 +30,7 @@ extern const char *const rtp_part_keys[RTP_PART_FIELDS];
 extern const char *const rtp_part_field_names[RTP_PART_FIELDS];
 
 typedef struct {
-    char *text[RTP_PART_FIELDS]; /* malloc'd, released by rtp_part_free */
+    char *text[RTP_PART_FIELDS]; /* rtp_mem's, released by rtp_part_free */
     /* The numeric fields, parsed from or formatted into text. */
     uint32_t width, height; /* the frame */
     rt_rect region;
@@ -38,7 +38,7 @@ typedef struct {
 } rtp_part;
 
 void rtp_part_free(rtp_part *p);
-/* Sets field f to a copy of value; false when out of memory. */
+/* Sets field f to a copy of value; false when it does not fit (rtp_mem_refusal()). */
 bool rtp_part_set(rtp_part *p, rtp_part_field f, const char *value);
 /* Formats the FRAME, REGION and INDEX fields from the numbers; false when out of memory. */
 bool rtp_part_format_place(rtp_part *p);

@@ -1,8 +1,8 @@
 /* rtp_part_cut; see part_cut.h. */
 #include "part/part_cut.h"
 
+#include "mem/mem.h"
 #include "thread/threads.h"
-#include <stdlib.h>
 
 /* Rays and light terms one estimated sample may log; past that it counts as this many. */
 #define RTP_CUT_LOG_CAPACITY 4096u
@@ -62,12 +62,12 @@ bool rtp_part_cut(const rt_scene *scene, uint32_t count, uint32_t threads, uint3
     uint32_t bands = ceil_div(cam->height, e.step_y);
     rt_workers workers = rtp_threads_workers(threads);
     uint32_t n = rt_workers_count(&workers);
-    e.band_cost = calloc(bands, sizeof *e.band_cost);
-    e.logs = calloc(n, sizeof *e.logs);
+    e.band_cost = rtp_mem_calloc(bands, sizeof *e.band_cost, "the cut's estimate");
+    e.logs = rtp_mem_calloc(n, sizeof *e.logs, "the cut's ray logs");
     bool ok = e.band_cost && e.logs;
     for (uint32_t w = 0; ok && w < n; w++) {
-        e.logs[w].rays = malloc(RTP_CUT_LOG_CAPACITY * sizeof *e.logs[w].rays);
-        e.logs[w].lights = malloc(RTP_CUT_LOG_CAPACITY * sizeof *e.logs[w].lights);
+        e.logs[w].rays = rtp_mem_alloc(RTP_CUT_LOG_CAPACITY * sizeof *e.logs[w].rays, "the cut's ray logs");
+        e.logs[w].lights = rtp_mem_alloc(RTP_CUT_LOG_CAPACITY * sizeof *e.logs[w].lights, "the cut's ray logs");
         e.logs[w].ray_capacity = e.logs[w].light_capacity = RTP_CUT_LOG_CAPACITY;
         ok = e.logs[w].rays && e.logs[w].lights;
     }
@@ -76,11 +76,11 @@ bool rtp_part_cut(const rt_scene *scene, uint32_t count, uint32_t threads, uint3
         cut_rows(&e, cam->height, count, starts);
     }
     for (uint32_t w = 0; e.logs && w < n; w++) {
-        free(e.logs[w].rays);
-        free(e.logs[w].lights);
+        rtp_mem_free(e.logs[w].rays);
+        rtp_mem_free(e.logs[w].lights);
     }
-    free(e.logs);
-    free(e.band_cost);
+    rtp_mem_free(e.logs);
+    rtp_mem_free(e.band_cost);
     return ok;
 }
 

@@ -15,7 +15,8 @@
  * height, strictly increasing) so that band i, rows [starts[i], starts[i + 1]), holds
  * about 1/count of the estimated cost. count must be 1..height. The estimate traces
  * sample 0 of each grid pixel with a ray log; a pixel costs 1 + the rays it traced
- * (capped). `threads` only spreads that work (0: all cores). False when out of memory. */
+ * (capped). `threads` only spreads that work (0: all cores). False when its memory does
+ * not fit under --max-memory (rtp_mem_refusal() says what). */
 bool rtp_part_cut(const rt_scene *scene, uint32_t count, uint32_t threads, uint32_t *starts);
 
 /* Band `index` of the cut as a rectangle of the frame. */

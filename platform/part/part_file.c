@@ -2,16 +2,19 @@
 #include "part/part_file.h"
 
 #include "image/file_write.h"
+#include "image/image.h"
+#include "load/input_file.h"
+#include "mem/mem.h"
 #include "sha256.h"
-#include <errno.h>
 #include <spng.h>
 #include <stdarg.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
 /* As image.c: refuse absurd headers and oversized ancillary chunks before reading them. */
 #define RTP_PART_CHUNK_LIMIT (16u << 20)
+/* Larger than any part within the side limit, so a huge file is refused before reading. */
+#define RTP_PART_MAX_FILE (1u << 30)
 
 /* Writes the problem into err; returns false. */
 static bool fail(char *err, size_t err_size, const char *fmt, ...)
@@ -33,10 +36,10 @@ static void pixel_digest(const uint8_t *rgb, const rt_rect *r, char hex[65])
     rtp_part_hex(digest, hex);
 }
 
-/* The PNG (malloc'd by spng) or NULL with *rc set. */
+/* The PNG (rtp_mem's, allocated by spng) or NULL with *rc set. */
 static void *encode(const rtp_part *p, const uint8_t *rgb, size_t *size, int *rc)
 {
-    spng_ctx *ctx = spng_ctx_new(SPNG_CTX_ENCODER);
+    spng_ctx *ctx = rtp_png_ctx_new(SPNG_CTX_ENCODER);
     if (!ctx) {
         *rc = SPNG_EMEM;
         return NULL;
@@ -66,18 +69,19 @@ bool rtp_part_write(const char *path, rtp_part *p, const uint8_t *rgb, char *err
     char hex[65];
     pixel_digest(rgb, &p->region, hex);
     if (!rtp_part_set(p, RTP_PART_PIXELS, hex)) {
-        snprintf(err, err_size, "%s: out of memory", path);
+        snprintf(err, err_size, "%s: %s", path, rtp_mem_refusal());
         return false;
     }
     int rc;
     size_t size = 0;
     void *png = encode(p, rgb, &size, &rc);
     if (!png) {
-        snprintf(err, err_size, "%s: cannot encode the part: %s", path, spng_strerror(rc));
+        snprintf(err, err_size, "%s: cannot encode the part: %s", path,
+                 rc == SPNG_EMEM ? rtp_mem_refusal() : spng_strerror(rc));
         return false;
     }
     bool ok = rtp_file_write(path, png, size, err, err_size);
-    free(png);
+    rtp_mem_free(png);
     return ok;
 }
 
@@ -86,10 +90,10 @@ static bool take_fields(spng_ctx *ctx, rtp_part *p, char *err, size_t err_size)
 {
     uint32_t n = 0;
     if (spng_get_text(ctx, NULL, &n) != 0) n = 0;
-    struct spng_text *text = n ? calloc(n, sizeof *text) : NULL;
+    struct spng_text *text = n ? rtp_mem_calloc(n, sizeof *text, "a part's text chunks") : NULL;
     if (n && (!text || spng_get_text(ctx, text, &n) != 0)) {
-        free(text);
-        snprintf(err, err_size, "out of memory reading its text chunks");
+        rtp_mem_free(text);
+        snprintf(err, err_size, "%s", rtp_mem_refusal());
         return false;
     }
     bool ok = true;
@@ -99,39 +103,39 @@ static bool take_fields(spng_ctx *ctx, rtp_part *p, char *err, size_t err_size)
             if (p->text[f])
                 ok = fail(err, err_size, "corrupt: two '%s' text chunks", rtp_part_keys[f]);
             else if (!rtp_part_set(p, f, text[i].text))
-                ok = fail(err, err_size, "out of memory reading its text chunks");
+                ok = fail(err, err_size, "%s", rtp_mem_refusal());
         }
-    free(text);
+    rtp_mem_free(text);
     for (int f = 0; ok && f < RTP_PART_FIELDS; f++)
         if (!p->text[f]) ok = fail(err, err_size, "not an rtk part: no '%s' text chunk", rtp_part_keys[f]);
     return ok && rtp_part_parse_place(p, err, err_size);
 }
 
 /* Decodes the whole PNG (so a truncated or corrupt file is caught) into *rgb. */
-static bool decode(FILE *f, rtp_part *p, uint8_t **rgb, char *err, size_t err_size)
+static bool decode(const uint8_t *png, size_t png_size, rtp_part *p, uint8_t **rgb, char *err, size_t err_size)
 {
-    spng_ctx *ctx = spng_ctx_new(0);
-    if (!ctx) {
-        snprintf(err, err_size, "out of memory");
-        return false;
-    }
+    spng_ctx *ctx = rtp_png_ctx_new(0);
+    if (!ctx) return fail(err, err_size, "%s", rtp_mem_refusal());
     struct spng_ihdr ihdr;
     size_t len = 0;
+    char what[64];
     int rc = spng_set_image_limits(ctx, RT_MAX_IMAGE_SIDE, RT_MAX_IMAGE_SIDE);
     if (rc == 0) rc = spng_set_chunk_limits(ctx, RTP_PART_CHUNK_LIMIT, RTP_PART_CHUNK_LIMIT);
     /* A damaged text chunk is an error, not a chunk silently dropped. */
     if (rc == 0) rc = spng_set_crc_action(ctx, SPNG_CRC_ERROR, SPNG_CRC_ERROR);
-    if (rc == 0) rc = spng_set_png_file(ctx, f);
+    if (rc == 0) rc = spng_set_png_buffer(ctx, png, png_size);
     if (rc == 0) rc = spng_get_ihdr(ctx, &ihdr);
     if (rc == 0) rc = spng_decoded_image_size(ctx, SPNG_FMT_RGB8, &len);
-    if (rc == 0 && !(*rgb = malloc(len))) rc = SPNG_EMEM;
+    /* The pixels are allocated from the header, before any is decoded. */
+    if (rc == 0) snprintf(what, sizeof what, "the part's pixels (%ux%u)", ihdr.width, ihdr.height);
+    if (rc == 0 && !(*rgb = rtp_mem_alloc(len, what))) rc = SPNG_EMEM;
     if (rc == 0) rc = spng_decode_image(ctx, *rgb, len, SPNG_FMT_RGB8, 0);
     if (rc == 0) rc = spng_decode_chunks(ctx); /* on to IEND: a part cut short after its pixels is truncated too */
     bool ok = rc == 0;
     if (rc == SPNG_IO_EOF || rc == SPNG_EOF)
         fail(err, err_size, "truncated (the PNG ends early)");
-    else if (rc == SPNG_IO_ERROR)
-        fail(err, err_size, "cannot read: %s", strerror(errno));
+    else if (rc == SPNG_EMEM)
+        fail(err, err_size, "%s", rtp_mem_refusal());
     else if (rc != 0)
         fail(err, err_size, "corrupt PNG: %s", spng_strerror(rc));
     ok = ok && take_fields(ctx, p, err, err_size);
@@ -144,34 +148,29 @@ static bool decode(FILE *f, rtp_part *p, uint8_t **rgb, char *err, size_t err_si
 
 /* The file's first and last bytes: a PNG signature, and the IEND chunk rtk writes last
  * (libspng does not insist on IEND's checksum, so a part missing its last bytes would pass). */
-static bool check_ends(FILE *f, char *err, size_t err_size)
+static bool check_ends(const uint8_t *png, size_t size, char *err, size_t err_size)
 {
     static const uint8_t signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
     static const uint8_t iend[12] = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xae, 0x42, 0x60, 0x82};
-    uint8_t head[8], tail[12];
-    if (fseek(f, 0, SEEK_END) != 0) return fail(err, err_size, "cannot read: %s", strerror(errno));
-    long size = ftell(f);
-    rewind(f);
     if (size == 0) return fail(err, err_size, "empty file");
-    if (size < 8 || fread(head, 1, 8, f) != 8 || memcmp(head, signature, 8))
-        return fail(err, err_size, "not an rtk part (not a PNG file)");
-    if (size < 20 || fseek(f, -12, SEEK_END) != 0 || fread(tail, 1, 12, f) != 12 || memcmp(tail, iend, 12))
-        return fail(err, err_size, "truncated (the PNG ends early)");
-    rewind(f);
+    if (size < 8 || memcmp(png, signature, 8)) return fail(err, err_size, "not an rtk part (not a PNG file)");
+    if (size < 20 || memcmp(png + size - 12, iend, 12)) return fail(err, err_size, "truncated (the PNG ends early)");
     return true;
 }
 
 bool rtp_part_read(const char *path, rtp_part *p, uint8_t **rgb, char *err, size_t err_size)
 {
     memset(p, 0, sizeof *p);
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        snprintf(err, err_size, "cannot open: %s", strerror(errno));
-        return false;
-    }
+    rtp_input in;
+    char why[512];
+    uint8_t *png = NULL;
+    size_t size = 0;
+    if (!rtp_input_open(&in, path, false, why, sizeof why))
+        return fail(err, err_size, "%s%s", in.open_failed ? "cannot open: " : "", why);
+    if (!rtp_input_read(&in, RTP_PART_MAX_FILE, "a part", &png, &size, err, err_size)) return false;
     uint8_t *pixels = NULL;
-    bool ok = check_ends(f, err, err_size) && decode(f, p, &pixels, err, err_size);
-    fclose(f);
+    bool ok = check_ends(png, size, err, err_size) && decode(png, size, p, &pixels, err, err_size);
+    rtp_mem_free(png);
     char hex[65];
     if (ok) pixel_digest(pixels, &p->region, hex);
     if (ok && strcmp(hex, p->text[RTP_PART_PIXELS]))
@@ -179,7 +178,7 @@ bool rtp_part_read(const char *path, rtp_part *p, uint8_t **rgb, char *err, size
     if (ok && rgb)
         *rgb = pixels;
     else
-        free(pixels);
+        rtp_mem_free(pixels);
     if (!ok) rtp_part_free(p);
     return ok;
 }

@@ -11,10 +11,12 @@
  * (naming path) when the file cannot be written. */
 bool rtp_part_write(const char *path, rtp_part *p, const uint8_t *rgb, char *err, size_t err_size);
 
-/* Reads a part, checks it is whole (a PNG intact to its end, every field present and
- * well formed, an image the region's size whose pixels match their digest) and, when
- * rgb is not NULL, hands over its pixels (malloc'd). False with the problem in err
- * (without the path: "truncated (the PNG ends early)"); *p is then empty. */
+/* Reads a part by the input rules (load/input_file.h: a regular file, not one of the
+ * command's outputs, read once into memory under --max-memory), checks it is whole (a PNG
+ * intact to its end, every field present and well formed, an image the region's size
+ * whose pixels match their digest) and, when rgb is not NULL, hands over its pixels
+ * (rtp_mem's). False with the problem in err (without the path: "truncated (the PNG ends
+ * early)"); *p is then empty, and rtp_load_failure_code() gives the exit code. */
 bool rtp_part_read(const char *path, rtp_part *p, uint8_t **rgb, char *err, size_t err_size);
 
 #endif

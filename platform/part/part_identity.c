@@ -2,9 +2,10 @@
 #include "part/part_identity.h"
 
 #include "cli/exit_codes.h"
+#include "load/input_file.h"
+#include "mem/mem.h"
 #include "sha256.h"
 #include <errno.h>
-#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,28 +17,30 @@
 #define RTP_BUILD_NAME "double"
 #endif
 
-/* The SHA-256 of a file's bytes, as lowercase hex. */
+/* The SHA-256 of a file's bytes, as lowercase hex. The file is opened by the input rules
+ * (a regular file, not an output) and streamed, so digesting costs no memory. */
 static bool file_digest(const char *path, char hex[65], char *err, size_t err_size)
 {
-    int fd = open(path, O_RDONLY | O_CLOEXEC);
-    if (fd < 0) {
-        snprintf(err, err_size, "%s: cannot read it again to digest it: %s", path, strerror(errno));
+    rtp_input in;
+    char why[RTP_ERR_SIZE];
+    if (!rtp_input_open(&in, path, false, why, sizeof why)) {
+        snprintf(err, err_size, "%s: cannot read it again to digest it: %s", path, why);
         return false;
     }
     rt_sha256 h;
     rt_sha256_init(&h);
     uint8_t buf[1 << 16];
     ssize_t n;
-    while ((n = read(fd, buf, sizeof buf)) != 0) {
+    while ((n = read(in.fd, buf, sizeof buf)) != 0) {
         if (n < 0 && errno == EINTR) continue;
         if (n < 0) {
             snprintf(err, err_size, "%s: cannot read it again to digest it: %s", path, strerror(errno));
-            close(fd);
+            rtp_input_close(&in);
             return false;
         }
         rt_sha256_update(&h, buf, (size_t)n);
     }
-    close(fd);
+    rtp_input_close(&in);
     uint8_t digest[32];
     rt_sha256_final(&h, digest);
     rtp_part_hex(digest, hex);
@@ -48,16 +51,16 @@ static bool file_digest(const char *path, char hex[65], char *err, size_t err_si
 static int asset_digests(const rtp_loaded_scene *l, rtp_part *out, char *err, size_t err_size)
 {
     if (l->asset_count == 0) return rtp_part_set(out, RTP_PART_ASSETS, "none") ? RTP_EXIT_OK : RTP_EXIT_MEMORY;
-    char *text = malloc((size_t)l->asset_count * 65);
+    char *text = rtp_mem_alloc((size_t)l->asset_count * 65, "the asset files' digests");
     if (!text) return RTP_EXIT_MEMORY;
     for (uint32_t i = 0; i < l->asset_count; i++) {
         if (!file_digest(l->asset_paths[i], text + (size_t)i * 65, err, err_size)) {
-            free(text);
+            rtp_mem_free(text);
             return RTP_EXIT_INPUT;
         }
         text[(size_t)i * 65 + 64] = i + 1 < l->asset_count ? '\n' : '\0';
     }
-    free(out->text[RTP_PART_ASSETS]);
+    rtp_mem_free(out->text[RTP_PART_ASSETS]);
     out->text[RTP_PART_ASSETS] = text;
     return RTP_EXIT_OK;
 }
@@ -77,6 +80,6 @@ int rtp_part_identify(const char *scene_path, const char *version, const rtp_sce
         !(rtp_part_set(out, RTP_PART_VERSION, version) && rtp_part_set(out, RTP_PART_BUILD, RTP_BUILD_NAME) &&
           rtp_part_set(out, RTP_PART_SCENE, scene_hex) && rtp_part_set(out, RTP_PART_SETTINGS, settings)))
         rc = RTP_EXIT_MEMORY;
-    if (rc == RTP_EXIT_MEMORY) snprintf(err, err_size, "%s: out of memory describing the part", scene_path);
+    if (rc == RTP_EXIT_MEMORY) snprintf(err, err_size, "%s: %s", scene_path, rtp_mem_refusal());
     return rc;
 }

@@ -8,8 +8,10 @@
 
 /* Sets out's fields RTP_PART_BUILD .. RTP_PART_FRAME (and width, height) for the scene
  * opened from scene_path, by the rtk whose `rtk --version` line is version. The files are
- * read again to digest them, right after loading. Returns RTP_EXIT_OK, or RTP_EXIT_INPUT /
- * RTP_EXIT_MEMORY with one line in err. */
+ * read again (by the input rules of load/input_file.h) to digest them, right after
+ * loading, so scene_path cannot be "-": standard input is gone by then (callers refuse
+ * --part and --region with it). Returns RTP_EXIT_OK, or RTP_EXIT_INPUT / RTP_EXIT_MEMORY
+ * with one line in err. */
 int rtp_part_identify(const char *scene_path, const char *version, const rtp_scene *scene, rtp_part *out, char *err,
                       size_t err_size);
 
