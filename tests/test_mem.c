@@ -80,9 +80,11 @@ Test(mem, a_stream_writes_into_counted_memory_and_fails_at_the_cap)
     rtp_mem_buffer_free(&text);
 
     rtp_mem_set_cap(rtp_mem_in_use() + 10000);
+    text.what = "the digits";
     out = rtp_mem_stream_open(&text);
     for (int i = 0; i < 1000; i++) fputs("0123456789", out);
     cr_expect_neq(fclose(out), 0, "writing past the cap did not fail");
     cr_expect(rtp_mem_refused());
+    cr_expect(strstr(rtp_mem_refusal(), "the digits ("), "%s", rtp_mem_refusal());
     rtp_mem_buffer_free(&text);
 }

@@ -211,7 +211,7 @@ static bool draw(FILE *out, const rtp_pixel_trace *pt, const rtp_image *img, con
 bool rtp_debug_write_svg(const char *path, const rtp_pixel_trace *pt, const rtp_image *render, char *err,
                          size_t err_size)
 {
-    rtp_mem_buffer text = {0};
+    rtp_mem_buffer text = {.what = "the SVG"};
     rt_aabb *bounds = rtp_svg_object_bounds(&pt->built->scene);
     FILE *out = bounds ? rtp_mem_stream_open(&text) : NULL;
     if (!out) {

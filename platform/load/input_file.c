@@ -126,10 +126,12 @@ static ssize_t read_fully(int fd, uint8_t *buf, size_t want)
 }
 
 /* Standard input that is not a regular file: its length is unknown until the end. */
-static bool read_stream(rtp_input *in, uint8_t **data, size_t *size, char *err, size_t err_size)
+static bool read_stream(rtp_input *in, const char *kind, uint8_t **data, size_t *size, char *err, size_t err_size)
 {
+    char what[64];
+    snprintf(what, sizeof what, "%s from standard input", kind);
     size_t cap = STDIN_CHUNK, got = 0;
-    uint8_t *buf = rtp_mem_alloc(cap, "the scene from standard input");
+    uint8_t *buf = rtp_mem_alloc(cap, what);
     for (;;) {
         if (!buf) return snprintf(err, err_size, "%s", rtp_mem_refusal()), false;
         ssize_t n = read_fully(in->fd, buf + got, cap - got);
@@ -140,7 +142,7 @@ static bool read_stream(rtp_input *in, uint8_t **data, size_t *size, char *err, 
         }
         got += (size_t)n;
         if (got < cap) break;
-        uint8_t *grown = rtp_mem_realloc(buf, 2 * cap, "the scene from standard input");
+        uint8_t *grown = rtp_mem_realloc(buf, 2 * cap, what);
         if (!grown) rtp_mem_free(buf);
         buf = grown;
         cap *= 2;
@@ -155,7 +157,7 @@ bool rtp_input_read(rtp_input *in, size_t max_size, const char *kind, uint8_t **
 {
     bool ok;
     if (!in->regular) {
-        ok = read_stream(in, data, size, err, err_size);
+        ok = read_stream(in, kind, data, size, err, err_size);
     } else {
         size_t length = (size_t)in->size;
         char limit[32];

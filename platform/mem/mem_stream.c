@@ -11,7 +11,7 @@ static ssize_t append(void *cookie, const char *bytes, size_t size)
     if (size > buf->capacity - buf->size) {
         size_t capacity = buf->capacity ? buf->capacity : 4096;
         while (capacity - buf->size < size) capacity *= 2;
-        char *grown = rtp_mem_realloc(buf->data, capacity, "the SVG");
+        char *grown = rtp_mem_realloc(buf->data, capacity, buf->what);
         if (!grown) return 0; /* 0 of size bytes written: the stream's error */
         buf->data = grown;
         buf->capacity = capacity;
