@@ -449,6 +449,18 @@ Test(stitch, refuses_a_part_of_another_build_or_version)
     expect_refusal("old.png: other rtk version than ", P(0), P(1), old, P(3), NULL);
 }
 
+/* A part may not claim more parts than its frame has rows: such a count (here 4e9)
+ * would size stitch's arrays. */
+Test(stitch, refuses_a_part_count_beyond_the_frame)
+{
+    good_parts();
+    const char *absurd = file_in_dir("absurd.png"), *rows = file_in_dir("rows.png");
+    forge(P(2), absurd, RTP_PART_INDEX, "2/4000000000", false);
+    expect_refusal("absurd.png: malformed 'rtk part' text '2/4000000000'", P(0), P(1), absurd, P(3), NULL);
+    forge(P(2), rows, RTP_PART_INDEX, "2/25", false); /* the frame has 24 rows */
+    expect_refusal("rows.png: malformed 'rtk part' text '2/25'", P(0), P(1), rows, P(3), NULL);
+}
+
 /* The version line as this rtk prints it with the compiler (or the commit) replaced. */
 static char *other_version(const char *compiler, const char *commit)
 {
