@@ -80,7 +80,9 @@
    Threads. A scene is read-only once made. Any number of threads may call
    rtk_render_region on one scene at once, on disjoint rectangles of one buffer or on
    different buffers; each pixel depends only on the scene, so the image is the same
-   bytes whatever the split. rtk_render does that split over its own threads.
+   bytes whatever the split. rtk_render does that split over its own threads. Call
+   rtk_open from one thread at a time: its opt.max_memory is kept by one accounting the
+   loader shares across the process.
 
    Determinism. Same scene file, same settings, same build => same bytes, on every
    machine. The render hash (rtk_render_hash) is the SHA-256 of the image as a binary

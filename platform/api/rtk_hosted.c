@@ -5,6 +5,7 @@
 #include "debug/debug_output.h"
 #include "image/image.h"
 #include "load/scene_open.h"
+#include "mem/mem.h"
 #include "rtk_scene.h"
 #include "thread/threads.h"
 #include <stdio.h>
@@ -60,7 +61,13 @@ rtk_status rtk_open(const char *path, const rtk_options *options, rtk_scene **ou
                              .depth = o.depth,
                              .aa = o.aa,
                              .threads = o.threads};
+    /* The loader counts its memory through rtp_mem against one process-wide cap, which the
+     * library does not otherwise set: for this open, the cap is what is held now plus
+     * opt.max_memory, so other scenes the program holds do not count against it. */
+    size_t cap = rtp_mem_cap(), held = rtp_mem_in_use();
+    rtp_mem_set_cap(o.max_memory > SIZE_MAX - held ? SIZE_MAX : held + o.max_memory);
     int rc = rtp_scene_open(path, &opt, &s->opened, err, err_size);
+    rtp_mem_set_cap(cap);
     if (rc != RTP_EXIT_OK) {
         free(s);
         return status_of_exit(rc);
