@@ -97,12 +97,15 @@ core-sources:
 	@echo $(CORE_SRC)
 
 # ---- The library and its installation ----
-# librtk.a and librtk.so hold the kernel and the hosted API (everything but the rtk
-# command); librtk.so exports only the rtk_ names of include/rtk.h (platform/api/rtk.map).
+# librtk.a and librtk.so hold the kernel and the hosted API: everything but the rtk
+# command, save its signal bookkeeping and messages, which the output writer calls (the
+# bookkeeping does nothing without rtp_signals_install). librtk.so exports the rtk_ names of
+# include/rtk.h (platform/api/rtk.map).
 # While the version is 0.x its SONAME carries the minor number: 0.5 and 0.6 may differ.
 RTK_VERSION := $(shell sed -n 's/^\#define RTK_VERSION_STRING "\(.*\)"/\1/p' include/rtk.h)
 RTK_SONAME := librtk.so.$(basename $(RTK_VERSION))
-LIB_SRC := $(CORE_SRC) $(filter-out platform/cli/% platform/debug/invariant.c,$(PLATFORM_SRC))
+LIB_SRC := $(CORE_SRC) $(filter-out platform/cli/% platform/debug/invariant.c,$(PLATFORM_SRC)) \
+           platform/cli/signals.c platform/cli/message.c
 LIB_OBJ := $(LIB_SRC:%.c=$(BUILD)/%.o)
 LIB_PIC_OBJ := $(LIB_SRC:%.c=$(BUILD)/pic/%.o)
 

@@ -1,9 +1,11 @@
 /* Stopping on signals (platform/cli/signals.h), each case in a child process of its own,
  * as a command would run: the exit status, the one line on stderr, the file removed. */
 #include "cli/signals.h"
+#include "image/file_write.h"
 #include "tmpdir.h"
 
 #include <criterion/criterion.h>
+#include <pthread.h>
 #include <signal.h>
 #include <stdio.h>
 #include <string.h>
@@ -148,4 +150,17 @@ Test(signals, sigpipe_does_not_kill)
 {
     char line[256];
     cr_expect_eq(run_child(sigpipe_is_an_error, line, sizeof line), 0);
+}
+
+/* The library (rtk_write_image) writes through the same writer, which blocks the signals
+ * before its rename in a command; without rtp_signals_install they stay the caller's. */
+Test(signals, a_write_without_install_leaves_the_signals_alone)
+{
+    char path[128], err[256];
+    snprintf(path, sizeof path, "%s/out.txt", dir);
+    cr_assert(rtp_file_write(path, "x", 1, err, sizeof err), "%s", err);
+    sigset_t now;
+    cr_assert_eq(pthread_sigmask(SIG_BLOCK, NULL, &now), 0);
+    cr_expect_not(sigismember(&now, SIGINT) || sigismember(&now, SIGTERM) || sigismember(&now, SIGHUP),
+                  "the writer left the signals blocked");
 }

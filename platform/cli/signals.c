@@ -46,11 +46,12 @@ static size_t compose(char *out, size_t size, const char *cmd, const char *subje
 }
 
 static char command[32], subject_copy[1024];
-static bool has_subject;
+static bool has_subject, installed;
 
 void rtp_signals_install(const char *cmd, const char *subject)
 {
     snprintf(command, sizeof command, "%s", cmd);
+    installed = true;
     has_subject = subject != NULL;
     snprintf(subject_copy, sizeof subject_copy, "%s", subject ? subject : "");
     message_len =
@@ -114,5 +115,12 @@ static void mask(int how)
     pthread_sigmask(how, &set, NULL);
 }
 
-void rtp_signals_hold(void) { mask(SIG_BLOCK); }
-void rtp_signals_release(void) { mask(SIG_UNBLOCK); }
+/* Only for a command: the library (rtk_write_image) leaves its caller's signals alone. */
+void rtp_signals_hold(void)
+{
+    if (installed) mask(SIG_BLOCK);
+}
+void rtp_signals_release(void)
+{
+    if (installed) mask(SIG_UNBLOCK);
+}

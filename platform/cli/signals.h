@@ -27,7 +27,8 @@ void rtp_signals_track(const char *temp_path);
 void rtp_signals_streaming(const char *name);
 /* Blocks the signals until exit: the output is about to be put in place, and a signal
  * that arrives from now on no longer stops the command. Also blocks them around
- * creating a temporary file, so it is tracked before a handler could miss it. */
+ * creating a temporary file, so it is tracked before a handler could miss it. Both do
+ * nothing before rtp_signals_install: in the library, the caller's signals are its own. */
 void rtp_signals_hold(void);
 void rtp_signals_release(void);
 
