@@ -30,7 +30,8 @@ case $("$rtk" --version 2>/dev/null) in
   *) echo "bad-inputs: cannot tell the build of $rtk from --version" >&2; exit 2 ;;
 esac
 native=1
-if [ $valgrind = 1 ] || nm "$rtk" 2>/dev/null | grep -q __asan_init; then native=0; fi
+# grep reads all of nm's output: with -q it would stop early and pipefail would see SIGPIPE.
+if [ $valgrind = 1 ] || nm "$rtk" 2>/dev/null | grep __asan_init >/dev/null; then native=0; fi
 echo "bad-inputs: $rtk, $build build, $([ $native = 1 ] && echo native || echo sanitized)"
 
 if [ $valgrind = 1 ]; then
