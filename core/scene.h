@@ -184,6 +184,7 @@ typedef struct {
     uint32_t child[RT_BVH_WIDTH];
     uint32_t count[RT_BVH_WIDTH];
 } rt_bvh_node;
+_Static_assert(sizeof(rt_bvh_node) == 128, "a BVH node is two 64-byte cache lines");
 
 /* The query code the BVH runs: every kernel gives the same results. The build picks the
  * best one the compiler's target guarantees (SSE2 on x86-64); the platform may pick
