@@ -30,8 +30,11 @@ bool rt_shade_hit(const rt_tracer *tr, const rt_ray *ray, rt_ray_kind kind, uint
 
 /* Ambient plus the shadowed Blinn-Phong term of light `index` as if it sat at
  * `position` (point and area lights; directional lights use their direction).
- * emits = false leaves the ambient term only. */
-rt_vec3 rt_light_shade(const rt_tracer *tr, uint32_t index, const rt_shading_point *p, rt_vec3 position, bool emits);
+ * lambertian (an area light's sampled point, Monte Carlo mode, format §12.1): the
+ * term is multiplied by the cosine at the light, and points behind it get the
+ * ambient term only. */
+rt_vec3 rt_light_shade(const rt_tracer *tr, uint32_t index, const rt_shading_point *p, rt_vec3 position,
+                       bool lambertian);
 
 /* The mirror direction of the view vector about the shading normal. */
 rt_vec3 rt_mirror_direction(const rt_shading_point *p);

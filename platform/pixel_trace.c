@@ -124,7 +124,7 @@ rt_hit_material rt_pixel_trace_material(const rt_pixel_trace *pt, const rt_ray_r
 
 const char *rt_ray_kind_name(rt_ray_kind kind)
 {
-    static const char *const names[] = {"camera", "reflection", "refraction", "shadow", "diffuse"};
+    static const char *const names[] = {"camera", "reflection", "refraction", "shadow", "diffuse", "glossy"};
     return names[kind];
 }
 
