@@ -24,21 +24,23 @@ ifeq ($(RT_REAL),fixed)
 CORE_CFLAGS += $(shell $(CC) -mgeneral-regs-only -x c -c /dev/null -o /dev/null 2>/dev/null && echo -mgeneral-regs-only)
 endif
 PKGS := yaml-0.1 spng
-PLATFORM_CFLAGS := $(BASE_CFLAGS) -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -Icore \
+PLATFORM_CFLAGS := $(BASE_CFLAGS) -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -Icore -Iplatform \
 	$(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 LDLIBS := $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lyaml -lspng) -lpthread -lm
 
 DEB_PACKAGES := build-essential pkg-config libyaml-dev libspng-dev libcriterion-dev libcglm-dev
 
-CORE_SRC := $(filter-out core/real_%.c,$(wildcard core/*.c)) $(wildcard core/real_$(RT_REAL)*.c)
-PLATFORM_SRC := $(filter-out platform/main.c,$(wildcard platform/*.c))
+# The core of one backend: every core file but the other backend's real_double*/real_fixed*.
+core_sources = $(filter-out core/real_double%.c core/real_fixed%.c,$(wildcard core/*.c)) $(wildcard core/real_$(1)*.c)
+CORE_SRC := $(call core_sources,$(RT_REAL))
+PLATFORM_SRC := $(filter-out platform/cli/main.c,$(wildcard platform/*/*.c))
 TEST_SRC := $(wildcard tests/*.c)
 
 CORE_OBJ := $(CORE_SRC:%.c=$(BUILD)/%.o)
 PLATFORM_OBJ := $(PLATFORM_SRC:%.c=$(BUILD)/%.o)
 TEST_OBJ := $(TEST_SRC:%.c=$(BUILD)/%.o)
 
-.PHONY: all deps demo check check-determinism bless clean
+.PHONY: all deps demo check check-determinism bless clean core-sources
 all: $(BUILD)/rtk
 
 $(BUILD)/core/%.o: core/%.c
@@ -51,7 +53,7 @@ $(BUILD)/platform/%.o: platform/%.c
 
 $(BUILD)/tests/%.o: tests/%.c
 	@mkdir -p $(@D)
-	$(CC) $(PLATFORM_CFLAGS) -Iplatform -MMD -MP -c $< -o $@
+	$(CC) $(PLATFORM_CFLAGS) -MMD -MP -c $< -o $@
 
 $(BUILD)/librtcore.a: $(CORE_OBJ)
 	@rm -f $@
@@ -61,11 +63,15 @@ $(BUILD)/librtplatform.a: $(PLATFORM_OBJ)
 	@rm -f $@
 	ar rcs $@ $^
 
-$(BUILD)/rtk: $(BUILD)/platform/main.o $(BUILD)/librtplatform.a $(BUILD)/librtcore.a
+$(BUILD)/rtk: $(BUILD)/platform/cli/main.o $(BUILD)/librtplatform.a $(BUILD)/librtcore.a
 	$(CC) $(OPT) -o $@ $^ $(LDLIBS)
 
 $(BUILD)/rtk-tests: $(TEST_OBJ) $(BUILD)/librtplatform.a $(BUILD)/librtcore.a
 	$(CC) $(OPT) -o $@ $^ $(LDLIBS) -lcriterion
+
+# The core's sources for RT_REAL, for the scripts that compile it themselves (targets/).
+core-sources:
+	@echo $(CORE_SRC)
 
 # Installs the Debian packages above when any is missing (root or sudo).
 deps:
@@ -107,7 +113,7 @@ bless: $(BUILD)/rtk
 clean:
 	rm -rf build build-fixed build-baremetal demo.png
 
--include $(CORE_OBJ:.o=.d) $(PLATFORM_OBJ:.o=.d) $(TEST_OBJ:.o=.d) $(BUILD)/platform/main.d
+-include $(CORE_OBJ:.o=.d) $(PLATFORM_OBJ:.o=.d) $(TEST_OBJ:.o=.d) $(BUILD)/platform/cli/main.d
 
 # Optional fragments: fuzzers (fuzz/fuzz.mk) and benchmarks (bench/bench.mk).
 -include fuzz/fuzz.mk

@@ -13,7 +13,7 @@ BENCH_EMBREE_CFLAGS := -std=c11 $(OPT) -g $(WARN) -D_POSIX_C_SOURCE=200809L
 
 $(BUILD)/bench/%.o: bench/%.c
 	@mkdir -p $(@D)
-	$(CC) $(PLATFORM_CFLAGS) -Iplatform -MMD -MP -c $< -o $@
+	$(CC) $(PLATFORM_CFLAGS) -MMD -MP -c $< -o $@
 
 $(BUILD)/bench/rtk-bench: $(BENCH_RTK_OBJ) $(BUILD)/librtplatform.a $(BUILD)/librtcore.a
 	$(CC) $(OPT) -o $@ $^ $(LDLIBS)

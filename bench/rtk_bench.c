@@ -13,9 +13,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "parallel.h"
+#include "thread/threads.h"
 #include "rtk_rays.h"
-#include "scene_build.h"
+#include "load/scene_open.h"
 #include "timing.h"
 
 typedef struct {
@@ -28,7 +28,7 @@ static void nearest_range(void *ctx, uint32_t begin, uint32_t end)
 {
     query_job *q = ctx;
     for (uint32_t i = begin; i < end; i++) {
-        rt_ray_setup rs = rt_ray_prepare(q->rays[i]);
+        rt_ray_setup rs = rt_intersect_prepare(q->rays[i]);
         rt_scene_hit h;
         q->hit[i] = rt_scene_nearest(q->scene, &rs, true, &h);
     }
@@ -38,7 +38,7 @@ static void any_range(void *ctx, uint32_t begin, uint32_t end)
 {
     query_job *q = ctx;
     for (uint32_t i = begin; i < end; i++) {
-        rt_ray_setup rs = rt_ray_prepare(q->rays[i]);
+        rt_ray_setup rs = rt_intersect_prepare(q->rays[i]);
         q->hit[i] = rt_scene_any(q->scene, &rs, true);
     }
 }
@@ -84,7 +84,7 @@ static double time_build(const rt_scene *scene, uint32_t threads, uint32_t repea
         fprintf(stderr, "rtk-bench: cannot allocate %zu MiB for the BVH build\n", size >> 20);
         return -1.0;
     }
-    rt_workers workers = rt_thread_workers(threads);
+    rt_workers workers = rtp_threads_workers(threads);
     double best = 0.0;
     for (uint32_t r = 0; r < repeats; r++) {
         fprintf(stderr, "  rtk %s: BVH build, %u thread%s, %u/%u\n", RT_REAL_NAME, threads, threads > 1 ? "s" : "",
@@ -144,7 +144,7 @@ static int usage(void)
 int main(int argc, char **argv)
 {
     if (argc < 4 || (strcmp(argv[1], "rays") && strcmp(argv[1], "run"))) return usage();
-    rt_build_options opt = {NULL, (size_t)4 << 30, 0, 0, -1, -1, 0};
+    rtp_scene_options opt = {NULL, (size_t)4 << 30, 0, 0, -1, -1, 0};
     uint32_t width = 1024, height = 1024, repeats = 3;
     for (int i = 4; i < argc; i++) {
         const char *val = i + 1 < argc ? argv[i + 1] : NULL;
@@ -156,10 +156,10 @@ int main(int argc, char **argv)
         if (!good) return usage();
         i++;
     }
-    char err[RT_ERR_SIZE];
-    rt_built_scene built;
+    char err[RTP_ERR_SIZE];
+    rtp_scene built;
     double start = bench_now();
-    int rc = rt_scene_open(argv[2], &opt, &built, err, sizeof err);
+    int rc = rtp_scene_open(argv[2], &opt, &built, err, sizeof err);
     if (rc != 0) {
         fprintf(stderr, "rtk-bench: %s\n", err);
         return rc;
@@ -185,6 +185,6 @@ int main(int argc, char **argv)
         }
     }
     bench_workload_free(&w);
-    rt_scene_close(&built);
+    rtp_scene_close(&built);
     return ok ? 0 : 1;
 }

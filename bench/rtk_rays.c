@@ -91,7 +91,7 @@ bool bench_make_workload(const rt_scene *scene, uint32_t width, uint32_t height,
             rt_real x = rt_div(rt_add(rt_from_int(col), half), fw);
             rt_ray ray = rt_camera_ray(&scene->camera, x, y);
             w->primary[w->primary_count++] = to_bench(ray);
-            rt_ray_setup rs = rt_ray_prepare(ray);
+            rt_ray_setup rs = rt_intersect_prepare(ray);
             rt_scene_hit hit;
             if (!rt_scene_nearest(scene, &rs, true, &hit)) continue;
             rt_ray sr;

@@ -3,6 +3,7 @@
 #define BENCH_RTK_RAYS_H
 
 #include "bvh.h"
+#include "scene_query.h"
 #include "workload.h"
 
 /* Fills w (malloc'd arrays; bench_workload_free releases them) with the scene's

@@ -1,5 +1,5 @@
 /* The format's built-in meshes (format §7.1 and §5.5) as constant tables. */
-#include "scene.h"
+#include "builtin_mesh.h"
 
 #define H RT_C(0.5)
 #define N RT_C(-0.5)
@@ -43,13 +43,13 @@ static const rt_vec3 square_normals[4] = {{O, O, I}, {O, O, I}, {O, O, I}, {O, O
 static const rt_vec2 square_uvs[4] = {{O, O}, {I, O}, {I, I}, {O, I}};
 static const uint32_t square_indices[6] = {0, 1, 2, 0, 2, 3};
 
-rt_mesh_desc rt_mesh_cube(void)
+rt_mesh_desc rt_builtin_mesh_cube(void)
 {
     rt_mesh_desc d = {cube_positions, cube_normals, cube_uvs, 24, cube_indices, 12};
     return d;
 }
 
-rt_mesh_desc rt_mesh_square(void)
+rt_mesh_desc rt_builtin_mesh_square(void)
 {
     rt_mesh_desc d = {square_positions, square_normals, square_uvs, 4, square_indices, 2};
     return d;

@@ -1,5 +1,5 @@
 /* Binned-SAH BVH build on the caller's workers, collapsed into a 4-wide tree
- * (bvh_collapse.c); see bvh.h (queries: bvh_query.c). */
+ * (bvh_collapse.c); see bvh.h (queries: scene_query.c). */
 #include "bvh.h"
 #include "bvh_binary.h"
 
@@ -41,7 +41,7 @@ static rt_aabb aabb_pad(rt_aabb b)
     return r;
 }
 
-rt_aabb rt_prim_bounds(const rt_scene *scene, uint32_t prim)
+rt_aabb rt_bvh_prim_bounds(const rt_scene *scene, uint32_t prim)
 {
     if (prim < scene->triangle_count) {
         const rt_triangle *tri = &scene->triangles[prim];
@@ -324,7 +324,7 @@ static void bound_refs_job(void *arg, uint32_t index, uint32_t worker)
     uint32_t first = index * b->plan.chunk, end = first + min_u32(b->plan.chunk, b->scene->prim_count - first);
     rt_aabb bounds = rt_aabb_empty(), centroids = rt_aabb_empty();
     for (uint32_t i = first; i < end; i++) {
-        b->refs[i].bounds = rt_prim_bounds(b->scene, i);
+        b->refs[i].bounds = rt_bvh_prim_bounds(b->scene, i);
         b->refs[i].prim = i;
         bounds = aabb_union(bounds, b->refs[i].bounds);
         centroids = aabb_add_point(centroids, centroid_of(&b->refs[i]));
@@ -470,7 +470,7 @@ rt_status rt_bvh_build_planned(rt_scene *scene, rt_arena *arena, const rt_worker
     b.refs = rt_arena_alloc(arena, (size_t)n * sizeof *b.refs);
     b.chunk_bounds = rt_arena_alloc(arena, chunks * sizeof *b.chunk_bounds);
     b.chunk_centroids = rt_arena_alloc(arena, chunks * sizeof *b.chunk_centroids);
-    b.stacks = rt_arena_alloc(arena, (size_t)rt_worker_count(workers) * SUBTREE_STACK * sizeof *b.stacks);
+    b.stacks = rt_arena_alloc(arena, (size_t)rt_workers_count(workers) * SUBTREE_STACK * sizeof *b.stacks);
     if (!b.nodes || !b.refs || !b.chunk_bounds || !b.chunk_centroids || !b.stacks || !alloc_phases(&b, arena, n))
         return RT_ERR_NOMEM;
     uint32_t inner = build_binary(&b, n);

@@ -1,21 +1,15 @@
-/* Bounding volume hierarchy over a scene's primitives (binned SAH), and the scene
- * queries built on it. Nearest-hit ties are broken by the lower primitive reference,
- * so a query returns the same primitive with or without the BVH. */
+/* Bounding volume hierarchy over a scene's primitives: a binned SAH build (bvh.c)
+ * collapsed into a 4-wide tree (bvh_collapse.c) that the scene queries walk
+ * (scene_query.h). */
 #ifndef RT_BVH_H
 #define RT_BVH_H
 
-#include "intersect.h"
 #include "scene.h"
 #include "workers.h"
 
 /* Deepest binary tree the builder makes (the 4-wide tree is at most as deep);
  * traversal stacks are sized by it. */
 #define RT_BVH_MAX_DEPTH 64
-
-typedef struct {
-    rt_prim_hit hit;
-    uint32_t prim; /* primitive reference (see rt_scene) */
-} rt_scene_hit;
 
 /* How the build divides its work into jobs. Every plan gives the same tree, bit for bit:
  * a plan only decides which parts may run at once. */
@@ -37,13 +31,6 @@ rt_status rt_bvh_build_planned(rt_scene *scene, rt_arena *arena, const rt_worker
 rt_aabb rt_bvh_child_box(const rt_bvh *bvh, const rt_bvh_node *node, int c);
 
 /* The world-space bounds of primitive `prim`. */
-rt_aabb rt_prim_bounds(const rt_scene *scene, uint32_t prim);
-/* Tests one primitive against the ray. */
-bool rt_prim_intersect(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs, rt_prim_hit *hit);
-
-/* Nearest hit in (t_min, t_max); use_bvh = false tests every primitive (for checking). */
-bool rt_scene_nearest(const rt_scene *scene, const rt_ray_setup *rs, bool use_bvh, rt_scene_hit *out);
-/* Whether any primitive is hit in (t_min, t_max): true exactly when rt_scene_nearest finds a hit. */
-bool rt_scene_any(const rt_scene *scene, const rt_ray_setup *rs, bool use_bvh);
+rt_aabb rt_bvh_prim_bounds(const rt_scene *scene, uint32_t prim);
 
 #endif

@@ -15,20 +15,6 @@ typedef struct {
     uint32_t first, count;
 } rt_bin_node;
 
-static inline rt_aabb rt_aabb_empty(void)
-{
-    rt_aabb b = {{RT_REAL_MAX, RT_REAL_MAX, RT_REAL_MAX}, {rt_neg(RT_REAL_MAX), rt_neg(RT_REAL_MAX), rt_neg(RT_REAL_MAX)}};
-    return b;
-}
-
-/* Half the surface area: all the SAH needs. */
-static inline rt_real rt_aabb_half_area(rt_aabb b)
-{
-    if (b.lo.x > b.hi.x) return RT_ZERO;
-    rt_vec3 e = rt_v3_sub(b.hi, b.lo);
-    return rt_add(rt_add(rt_mul(e.x, e.y), rt_mul(e.y, e.z)), rt_mul(e.z, e.x));
-}
-
 /* Stores b rounded outwards on the tree's grid. */
 void rt_bvh_store_box(rt_bound box[6], rt_aabb b, int grid);
 

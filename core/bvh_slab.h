@@ -1,6 +1,6 @@
-/* The per-ray box tests of the BVH queries (bvh_query.c): a ray's slab set-up, and the
+/* The per-ray box tests of the BVH queries (scene_query.c): a ray's slab set-up, and the
  * test of a node's four children in the double build with SSE2, in the fixed build with
- * integer bounds, and one by one otherwise. Included by bvh_query.c only. */
+ * integer bounds, and one by one otherwise. Included by scene_query.c only. */
 #ifndef RT_BVH_SLAB_H
 #define RT_BVH_SLAB_H
 

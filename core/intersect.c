@@ -1,7 +1,7 @@
 /* Ray-primitive intersection tests; see intersect.h. */
 #include "intersect.h"
 
-rt_ray_setup rt_ray_prepare(rt_ray ray)
+rt_ray_setup rt_intersect_prepare(rt_ray ray)
 {
     rt_ray_setup rs;
     rs.ray = ray;

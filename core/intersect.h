@@ -6,6 +6,9 @@
 #include "ray.h"
 #include "scene.h"
 
+/* The per-ray constants of the triangle and box tests. */
+rt_ray_setup rt_intersect_prepare(rt_ray ray);
+
 /* Which surface of a primitive was hit. */
 typedef enum { RT_PART_SURFACE, RT_PART_CAP_BOTTOM, RT_PART_CAP_TOP } rt_part;
 

@@ -22,6 +22,11 @@ typedef struct {
     rt_vec3 inv_direction; /* 1/direction; RT_REAL_MAX-signed for zero components */
 } rt_ray_setup;
 
-rt_ray_setup rt_ray_prepare(rt_ray ray);
+/* A ray from origin along unit direction, starting past the hit epsilon. */
+static inline rt_ray rt_ray_make(rt_vec3 origin, rt_vec3 direction, rt_real t_max)
+{
+    rt_ray r = {origin, direction, RT_HIT_EPSILON, t_max};
+    return r;
+}
 
 #endif

@@ -1,7 +1,7 @@
 /* Filling the debugger's ray log; see raylog.h. */
 #include "raylog.h"
 
-uint32_t rt_log_begin(rt_ray_log *log, rt_ray_kind kind, uint32_t parent, uint32_t depth, const rt_ray *ray)
+uint32_t rt_raylog_begin(rt_ray_log *log, rt_ray_kind kind, uint32_t parent, uint32_t depth, const rt_ray *ray)
 {
     if (!log) return RT_NO_PARENT;
     if (log->ray_count >= log->ray_capacity) {
@@ -18,12 +18,12 @@ uint32_t rt_log_begin(rt_ray_log *log, rt_ray_kind kind, uint32_t parent, uint32
     return log->ray_count++;
 }
 
-rt_ray_record *rt_log_ray(rt_ray_log *log, uint32_t id)
+rt_ray_record *rt_raylog_ray(rt_ray_log *log, uint32_t id)
 {
     return log && id != RT_NO_PARENT ? &log->rays[id] : 0;
 }
 
-void rt_log_light(rt_ray_log *log, const rt_light_record *rec)
+void rt_raylog_light(rt_ray_log *log, const rt_light_record *rec)
 {
     if (!log || rec->ray == RT_NO_PARENT) return;
     if (log->light_count >= log->light_capacity) {

@@ -66,10 +66,10 @@ typedef struct {
 
 /* Recording, for the tracers; each is a no-op when log is NULL. */
 /* Starts a record for a ray; returns its index, or RT_NO_PARENT when not recorded. */
-uint32_t rt_log_begin(rt_ray_log *log, rt_ray_kind kind, uint32_t parent, uint32_t depth, const rt_ray *ray);
+uint32_t rt_raylog_begin(rt_ray_log *log, rt_ray_kind kind, uint32_t parent, uint32_t depth, const rt_ray *ray);
 /* The record of ray id, or NULL when there is none. */
-rt_ray_record *rt_log_ray(rt_ray_log *log, uint32_t id);
+rt_ray_record *rt_raylog_ray(rt_ray_log *log, uint32_t id);
 /* Appends the light terms of a recorded ray's hit. */
-void rt_log_light(rt_ray_log *log, const rt_light_record *rec);
+void rt_raylog_light(rt_ray_log *log, const rt_light_record *rec);
 
 #endif

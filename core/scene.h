@@ -4,6 +4,7 @@
 #ifndef RT_SCENE_H
 #define RT_SCENE_H
 
+#include "aabb.h"
 #include "arena.h"
 #include "status.h"
 #include "vec.h"
@@ -139,8 +140,6 @@ typedef struct {
     rt_trace_settings trace;
 } rt_camera;
 
-typedef struct { rt_vec3 lo, hi; } rt_aabb;
-
 /* A BVH node, 128 bytes: up to RT_BVH_WIDTH children, each an inner node or a leaf.
  * Child c's box is box[k][c] for the planes k = lo x, y, z, hi x, y, z, rounded outwards
  * to four bytes (rt_bound, on the tree's grid). An inner child is nodes[child[c]] with
@@ -183,7 +182,7 @@ typedef struct {
      * sphere/cylinder object (see rt_prim_*). */
     uint32_t *quadric_objects;
     uint32_t prim_count;
-    /* The mesh objects in order, so in increasing first_triangle (see rt_triangle_object). */
+    /* The mesh objects in order, so in increasing first_triangle (see rt_scene_triangle_object). */
     uint32_t *mesh_objects;
     uint32_t mesh_object_count;
     rt_bvh bvh;
@@ -201,10 +200,5 @@ typedef struct {
  * BVH on the workers (NULL: on this thread; the scene is the same either way). */
 rt_status rt_scene_build(const rt_scene_desc *desc, rt_arena *arena, const rt_workers *workers, rt_scene *out,
                          rt_build_error *err);
-
-/* The built-in meshes of the format: the Cube (24 vertices, 12 triangles) and the
- * Plane's unit square in XY. The arrays are constant tables. */
-rt_mesh_desc rt_mesh_cube(void);
-rt_mesh_desc rt_mesh_square(void);
 
 #endif

@@ -111,7 +111,7 @@ static char *put_decimal(char *out, uint32_t v)
     return out;
 }
 
-void rt_render_hash(const uint8_t *rgb, uint32_t width, uint32_t height, uint8_t digest[32])
+void rt_sha256_ppm(const uint8_t *rgb, uint32_t width, uint32_t height, uint8_t digest[32])
 {
     char header[32] = "P6\n"; /* "P6\n" + two 10-digit numbers + " " + "\n255\n" fits */
     char *end = put_decimal(header + 3, width);

@@ -17,6 +17,6 @@ void rt_sha256_update(rt_sha256 *h, const void *data, size_t size);
 void rt_sha256_final(rt_sha256 *h, uint8_t digest[32]);
 
 /* The render hash: SHA-256 of the P6 PPM "P6\n<w> <h>\n255\n" + rgb bytes (top row first). */
-void rt_render_hash(const uint8_t *rgb, uint32_t width, uint32_t height, uint8_t digest[32]);
+void rt_sha256_ppm(const uint8_t *rgb, uint32_t width, uint32_t height, uint8_t digest[32]);
 
 #endif

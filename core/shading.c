@@ -5,20 +5,20 @@
 /* The skeleton's refractive index of air (format §10.3). */
 #define RT_AIR_INDEX RT_C(1.0003)
 
-bool rt_nearest_hit(const rt_tracer *tr, const rt_ray *ray, rt_scene_hit *hit)
+bool rt_shading_nearest(const rt_tracer *tr, const rt_ray *ray, rt_scene_hit *hit)
 {
-    rt_ray_setup rs = rt_ray_prepare(*ray);
+    rt_ray_setup rs = rt_intersect_prepare(*ray);
     return rt_scene_nearest(tr->scene, &rs, tr->use_bvh, hit);
 }
 
-bool rt_shade_hit(const rt_tracer *tr, const rt_ray *ray, rt_ray_kind kind, uint32_t parent, uint32_t depth,
+bool rt_shading_hit(const rt_tracer *tr, const rt_ray *ray, rt_ray_kind kind, uint32_t parent, uint32_t depth,
                   rt_shading_point *p)
 {
     const rt_scene *scene = tr->scene;
-    p->ray = rt_log_begin(tr->log, kind, parent, depth, ray);
+    p->ray = rt_raylog_begin(tr->log, kind, parent, depth, ray);
     p->depth = depth;
     rt_scene_hit hit;
-    if (!rt_nearest_hit(tr, ray, &hit)) return false;
+    if (!rt_shading_nearest(tr, ray, &hit)) return false;
     rt_surface s = rt_surface_at(scene, ray, &hit);
     const rt_material *mat = &scene->materials[s.material];
     p->point = s.point;
@@ -26,13 +26,13 @@ bool rt_shade_hit(const rt_tracer *tr, const rt_ray *ray, rt_ray_kind kind, uint
     /* The shading normal is turned to face the viewer by its own sign (format §9). */
     p->entering = rt_v3_dot(s.normal, p->v) > RT_ZERO;
     p->n = p->entering ? s.normal : rt_v3_neg(s.normal);
-    p->ke = rt_channel_at(scene, &mat->emissive, s.uv);
-    p->kd = rt_channel_at(scene, &mat->diffuse, s.uv);
-    p->ks = rt_channel_at(scene, &mat->specular, s.uv);
-    p->kt = rt_channel_at(scene, &mat->transmittance, s.uv);
+    p->ke = rt_surface_channel(scene, &mat->emissive, s.uv);
+    p->kd = rt_surface_channel(scene, &mat->diffuse, s.uv);
+    p->ks = rt_surface_channel(scene, &mat->specular, s.uv);
+    p->kt = rt_surface_channel(scene, &mat->transmittance, s.uv);
     p->shininess = mat->shininess;
     p->index_of_refraction = mat->index_of_refraction;
-    rt_ray_record *rec = rt_log_ray(tr->log, p->ray);
+    rt_ray_record *rec = rt_raylog_ray(tr->log, p->ray);
     if (rec) {
         rec->hit = true;
         rec->scene_hit = hit;
@@ -57,7 +57,7 @@ static rt_vec3 shadow_attenuation(const rt_tracer *tr, rt_vec3 point, rt_vec3 to
     /* Opaque shadows need only whether anything blocks (any hit), unless the debugger
      * records which hit did. */
     if (mode == 1 && !tr->log) {
-        rt_ray_setup rs = rt_ray_prepare(rt_make_ray(point, to_light, distance));
+        rt_ray_setup rs = rt_intersect_prepare(rt_ray_make(point, to_light, distance));
         return rt_scene_any(scene, &rs, tr->use_bvh) ? rt_v3(RT_ZERO, RT_ZERO, RT_ZERO) : atten;
     }
     rt_vec3 origin = point;
@@ -65,18 +65,18 @@ static rt_vec3 shadow_attenuation(const rt_tracer *tr, rt_vec3 point, rt_vec3 to
     /* Each crossing moves the origin forward by at least the hit epsilon; the bound
      * only guards against pathological scenes. */
     for (uint32_t crossing = 0; crossing < 1u << 16; crossing++) {
-        rt_ray ray = rt_make_ray(origin, to_light, remaining);
-        uint32_t id = rt_log_begin(tr->log, RT_RAY_SHADOW, parent, depth, &ray);
-        rt_ray_record *rec = rt_log_ray(tr->log, id);
+        rt_ray ray = rt_ray_make(origin, to_light, remaining);
+        uint32_t id = rt_raylog_begin(tr->log, RT_RAY_SHADOW, parent, depth, &ray);
+        rt_ray_record *rec = rt_raylog_ray(tr->log, id);
         if (rec) rec->light = light;
         rt_scene_hit hit;
-        if (!rt_nearest_hit(tr, &ray, &hit)) {
+        if (!rt_shading_nearest(tr, &ray, &hit)) {
             if (rec) rec->color = atten;
             return atten;
         }
         rt_surface s = rt_surface_at(scene, &ray, &hit);
         rt_vec3 kt = mode == 1 ? rt_v3(RT_ZERO, RT_ZERO, RT_ZERO)
-                               : rt_channel_at(scene, &scene->materials[s.material].transmittance, s.uv);
+                               : rt_surface_channel(scene, &scene->materials[s.material].transmittance, s.uv);
         atten = rt_v3_mul(atten, kt);
         if (rec) {
             rec->hit = true;
@@ -100,7 +100,7 @@ static rt_real distance_attenuation(const rt_light *l, rt_real r)
     return rt_div(RT_ONE, denom);
 }
 
-rt_vec3 rt_light_shade(const rt_tracer *tr, uint32_t index, const rt_shading_point *p, rt_vec3 position,
+rt_vec3 rt_shading_light(const rt_tracer *tr, uint32_t index, const rt_shading_point *p, rt_vec3 position,
                        bool lambertian)
 {
     const rt_light *l = &tr->scene->lights[index];
@@ -117,7 +117,7 @@ rt_vec3 rt_light_shade(const rt_tracer *tr, uint32_t index, const rt_shading_poi
         rt_vec3 delta = rt_v3_sub(position, p->point);
         distance = rt_v3_length(delta);
         if (distance == RT_ZERO) {
-            rt_log_light(tr->log, &rec);
+            rt_raylog_light(tr->log, &rec);
             return rec.contribution;
         }
         to_light = rt_v3_scale(delta, rt_div(RT_ONE, distance));
@@ -137,16 +137,16 @@ rt_vec3 rt_light_shade(const rt_tracer *tr, uint32_t index, const rt_shading_poi
                                     rt_mul(rec.distance_attenuation, rec.light_cosine));
         rec.contribution = rt_v3_add(rec.ambient, rt_v3_mul(light, rt_v3_add(rec.diffuse, rec.specular)));
     }
-    rt_log_light(tr->log, &rec);
+    rt_raylog_light(tr->log, &rec);
     return rec.contribution;
 }
 
-rt_vec3 rt_mirror_direction(const rt_shading_point *p)
+rt_vec3 rt_shading_mirror(const rt_shading_point *p)
 {
     return rt_v3_normalize(rt_v3_sub(rt_v3_scale(p->n, rt_mul(RT_C(2.0), rt_v3_dot(p->v, p->n))), p->v));
 }
 
-bool rt_refraction_direction(const rt_shading_point *p, rt_vec3 *out)
+bool rt_shading_refraction(const rt_shading_point *p, rt_vec3 *out)
 {
     rt_real eta = p->entering ? rt_div(RT_AIR_INDEX, p->index_of_refraction)
                               : rt_div(p->index_of_refraction, RT_AIR_INDEX);

@@ -14,18 +14,12 @@ typedef struct {
     uint32_t ray, depth; /* the ray being shaded (for the log) */
 } rt_shading_point;
 
-static inline rt_ray rt_make_ray(rt_vec3 origin, rt_vec3 direction, rt_real t_max)
-{
-    rt_ray r = {origin, direction, RT_HIT_EPSILON, t_max};
-    return r;
-}
-
 /* The nearest hit along ray (t_min, t_max). */
-bool rt_nearest_hit(const rt_tracer *tr, const rt_ray *ray, rt_scene_hit *hit);
+bool rt_shading_nearest(const rt_tracer *tr, const rt_ray *ray, rt_scene_hit *hit);
 
 /* Traces ray (recorded in the log as `kind`, spawned by ray `parent`) to its nearest
  * hit and fills p with the frame and material values there; false on a miss. */
-bool rt_shade_hit(const rt_tracer *tr, const rt_ray *ray, rt_ray_kind kind, uint32_t parent, uint32_t depth,
+bool rt_shading_hit(const rt_tracer *tr, const rt_ray *ray, rt_ray_kind kind, uint32_t parent, uint32_t depth,
                   rt_shading_point *p);
 
 /* Ambient plus the shadowed Blinn-Phong term of light `index` as if it sat at
@@ -33,12 +27,12 @@ bool rt_shade_hit(const rt_tracer *tr, const rt_ray *ray, rt_ray_kind kind, uint
  * lambertian (an area light's sampled point, Monte Carlo mode, format §12.1): the
  * term is multiplied by the cosine at the light, and points behind it get the
  * ambient term only. */
-rt_vec3 rt_light_shade(const rt_tracer *tr, uint32_t index, const rt_shading_point *p, rt_vec3 position,
+rt_vec3 rt_shading_light(const rt_tracer *tr, uint32_t index, const rt_shading_point *p, rt_vec3 position,
                        bool lambertian);
 
 /* The mirror direction of the view vector about the shading normal. */
-rt_vec3 rt_mirror_direction(const rt_shading_point *p);
+rt_vec3 rt_shading_mirror(const rt_shading_point *p);
 /* The refracted direction into (or out of) the surface; false on total internal reflection. */
-bool rt_refraction_direction(const rt_shading_point *p, rt_vec3 *out);
+bool rt_shading_refraction(const rt_shading_point *p, rt_vec3 *out);
 
 #endif

@@ -26,20 +26,8 @@ static rt_surface triangle_surface(const rt_scene *scene, const rt_scene_hit *hi
         s.uv = v2(rt_add(rt_add(rt_mul(ua.u, b0), rt_mul(ub.u, b1)), rt_mul(uc.u, b2)),
                   rt_add(rt_add(rt_mul(ua.v, b0), rt_mul(ub.v, b1)), rt_mul(uc.v, b2)));
     }
-    s.object = rt_triangle_object(scene, hit->prim);
+    s.object = rt_scene_triangle_object(scene, hit->prim);
     return s;
-}
-
-uint32_t rt_triangle_object(const rt_scene *scene, uint32_t triangle)
-{
-    /* The last mesh object whose first triangle is at or before it. */
-    uint32_t lo = 0, hi = scene->mesh_object_count;
-    while (hi - lo > 1) {
-        uint32_t mid = lo + (hi - lo) / 2;
-        if (scene->objects[scene->mesh_objects[mid]].first_triangle <= triangle) lo = mid;
-        else hi = mid;
-    }
-    return scene->mesh_objects[lo];
 }
 
 static rt_surface quadric_surface(const rt_scene *scene, const rt_ray *ray, const rt_scene_hit *hit, rt_surface s)
@@ -96,7 +84,7 @@ static rt_vec3 texel(const rt_texture *tex, uint32_t x, uint32_t y)
 
 static rt_vec3 lerp(rt_vec3 a, rt_vec3 b, rt_real t) { return rt_v3_add(a, rt_v3_scale(rt_v3_sub(b, a), t)); }
 
-rt_vec3 rt_texture_sample(const rt_texture *tex, rt_vec2 uv)
+rt_vec3 rt_surface_texel(const rt_texture *tex, rt_vec2 uv)
 {
     /* Texel (i, j) sits exactly at uv (i/W, j/H); v = 0 is the top row (format §6.3). */
     uint32_t w = tex->width, h = tex->height;
@@ -111,7 +99,7 @@ rt_vec3 rt_texture_sample(const rt_texture *tex, rt_vec2 uv)
     return lerp(top, bottom, fy);
 }
 
-rt_vec3 rt_channel_at(const rt_scene *scene, const rt_channel *ch, rt_vec2 uv)
+rt_vec3 rt_surface_channel(const rt_scene *scene, const rt_channel *ch, rt_vec2 uv)
 {
-    return ch->texture == RT_NO_TEXTURE ? ch->color : rt_texture_sample(&scene->textures[ch->texture], uv);
+    return ch->texture == RT_NO_TEXTURE ? ch->color : rt_surface_texel(&scene->textures[ch->texture], uv);
 }

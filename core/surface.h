@@ -2,7 +2,7 @@
 #ifndef RT_SURFACE_H
 #define RT_SURFACE_H
 
-#include "bvh.h"
+#include "scene_query.h"
 
 typedef struct {
     rt_vec3 point;
@@ -14,10 +14,8 @@ typedef struct {
 } rt_surface;
 
 rt_surface rt_surface_at(const rt_scene *scene, const rt_ray *ray, const rt_scene_hit *hit);
-/* The mesh object a triangle (an index into rt_scene.triangles) belongs to. */
-uint32_t rt_triangle_object(const rt_scene *scene, uint32_t triangle);
 /* A material channel's value at uv: its solid colour or its texture's texel blend. */
-rt_vec3 rt_channel_at(const rt_scene *scene, const rt_channel *ch, rt_vec2 uv);
-rt_vec3 rt_texture_sample(const rt_texture *tex, rt_vec2 uv);
+rt_vec3 rt_surface_channel(const rt_scene *scene, const rt_channel *ch, rt_vec2 uv);
+rt_vec3 rt_surface_texel(const rt_texture *tex, rt_vec2 uv);
 
 #endif

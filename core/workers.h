@@ -17,12 +17,12 @@ typedef struct rt_workers {
     void (*run)(const struct rt_workers *w, rt_job_fn *job, void *arg, uint32_t jobs);
 } rt_workers;
 
-static inline uint32_t rt_worker_count(const rt_workers *w) { return w && w->count > 1 ? w->count : 1; }
+static inline uint32_t rt_workers_count(const rt_workers *w) { return w && w->count > 1 ? w->count : 1; }
 
 /* Runs the jobs on w, or here in index order when w is NULL or has one worker. */
 static inline void rt_workers_run(const rt_workers *w, rt_job_fn *job, void *arg, uint32_t jobs)
 {
-    if (rt_worker_count(w) > 1 && jobs > 1) {
+    if (rt_workers_count(w) > 1 && jobs > 1) {
         w->run(w, job, arg, jobs);
         return;
     }

@@ -3,8 +3,9 @@
 #ifndef FZ_FIXTURE_H
 #define FZ_FIXTURE_H
 
-#include "bvh.h"
 #include "bytes.h"
+#include "ray.h"
+#include "scene.h"
 
 /* Builds desc with rt_scene_build into a static arena; the scene is valid until the
  * next call. */

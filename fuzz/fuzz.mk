@@ -25,7 +25,6 @@ FUZZ_RUN_VARIANTS ?= $(FUZZ_VARIANTS)
 FUZZ_CORE_CFLAGS := $(filter-out -DRT_REAL_FIXED,$(CORE_CFLAGS)) $(FUZZ_SAN) -fsanitize=fuzzer-no-link
 FUZZ_PLATFORM_CFLAGS := $(filter-out -DRT_REAL_FIXED,$(PLATFORM_CFLAGS)) $(FUZZ_SAN) -fsanitize=fuzzer-no-link
 fuzz_real_flag = $(if $(filter fixed,$(1)),-DRT_REAL_FIXED)
-fuzz_core_src = $(filter-out core/real_%.c,$(wildcard core/*.c)) $(wildcard core/real_$(1)*.c)
 fuzz_targets = $(if $(filter fixed,$(1)),$(FUZZ_CORE_TARGETS),$(FUZZ_ALL))
 
 fuzz_bins = $(foreach v,$(1),$(addprefix $(FUZZ_BUILD)/$(v)/,$(call fuzz_targets,$(v))))
@@ -48,9 +47,9 @@ $(FUZZ_BUILD)/$(1)/platform/%.o: platform/%.c
 
 $(FUZZ_BUILD)/$(1)/fuzz/%.o: fuzz/%.c
 	@mkdir -p $$(@D)
-	$(FUZZ_CC) $(FUZZ_PLATFORM_CFLAGS) $(call fuzz_real_flag,$(1)) -Iplatform -MMD -MP -c $$< -o $$@
+	$(FUZZ_CC) $(FUZZ_PLATFORM_CFLAGS) $(call fuzz_real_flag,$(1)) -MMD -MP -c $$< -o $$@
 
-$(FUZZ_BUILD)/$(1)/librtcore.a: $(patsubst %.c,$(FUZZ_BUILD)/$(1)/%.o,$(call fuzz_core_src,$(1)))
+$(FUZZ_BUILD)/$(1)/librtcore.a: $(patsubst %.c,$(FUZZ_BUILD)/$(1)/%.o,$(call core_sources,$(1)))
 	@rm -f $$@
 	ar rcs $$@ $$^
 

@@ -1,9 +1,10 @@
-/* libFuzzer target: the Cube (rt_mesh_cube: 12 triangles, 24 vertices) under a
+/* libFuzzer target: the Cube (rt_builtin_mesh_cube: 12 triangles, 24 vertices) under a
  * fuzzed transform, against slab tests of the box grown and shrunk by a margin.
  * A closed mesh: rays from outside through its edges and corners towards the
  * inside must hit it (watertightness). */
 #include <math.h>
 
+#include "builtin_mesh.h"
 #include "check.h"
 #include "fixture.h"
 #include "oracle.h"
@@ -32,7 +33,7 @@ static void check_hit(const rt_scene *scene, const rt_ray *ray, const rt_scene_h
 static void check_ray(const rt_scene *scene, rt_ray ray)
 {
     const rt_object *obj = &scene->objects[0];
-    rt_ray_setup rs = rt_ray_prepare(ray);
+    rt_ray_setup rs = rt_intersect_prepare(ray);
     rt_scene_hit hit = {0}, brute = {0};
     bool found = rt_scene_nearest(scene, &rs, true, &hit), brute_found = rt_scene_nearest(scene, &rs, false, &brute);
     /* Both sides' hits must be real crossings before they can be compared. */
@@ -79,7 +80,7 @@ static rt_vec3 edge_point(fz_bytes *in)
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     fz_bytes in = fz_bytes_of(data, size);
-    rt_mesh_desc cube = rt_mesh_cube();
+    rt_mesh_desc cube = rt_builtin_mesh_cube();
     rt_scene scene;
     fz_scene_one(&scene, RT_SHAPE_MESH, &cube, fz_transform(&in));
     const rt_affine *world = &scene.objects[0].to_world;

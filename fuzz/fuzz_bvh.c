@@ -8,7 +8,9 @@
 #include <string.h>
 
 #include "check.h"
+#include "bvh.h"
 #include "fixture.h"
+#include "scene_query.h"
 #include "oracle.h"
 
 #define MAX_TRIANGLES 48
@@ -70,7 +72,7 @@ static void check_tree(const rt_scene *s)
                 uint32_t prim = bvh->prim_refs[k];
                 FZ_CHECK(prim < s->prim_count && !seen[prim], "primitive %u referenced twice or out of range", prim);
                 seen[prim] = 1;
-                rt_aabb b = rt_prim_bounds(s, prim);
+                rt_aabb b = rt_bvh_prim_bounds(s, prim);
                 FZ_CHECK(box_inside(&b, &box), "primitive %u pokes out of node %u slot %d", prim, i, c);
             }
         }
@@ -96,7 +98,7 @@ static void check_plan(const rt_scene *s, rt_bvh_plan plan)
 
 static void check_ray(const rt_scene *s, rt_ray ray)
 {
-    rt_ray_setup rs = rt_ray_prepare(ray);
+    rt_ray_setup rs = rt_intersect_prepare(ray);
     rt_scene_hit a, b;
     memset(&a, 0, sizeof a);
     memset(&b, 0, sizeof b);
@@ -113,7 +115,7 @@ static void check_ray(const rt_scene *s, rt_ray ray)
     /* The documented tie rule: no lower reference hits at the same t. */
     for (uint32_t p = 0; p < a.prim; p++) {
         rt_prim_hit h;
-        FZ_CHECK(!rt_prim_intersect(s, p, &rs, &h) || h.t != a.hit.t, "primitive %u ties with %u at t = %.17g and is lower", p,
+        FZ_CHECK(!rt_scene_prim_intersect(s, p, &rs, &h) || h.t != a.hit.t, "primitive %u ties with %u at t = %.17g and is lower", p,
                  a.prim, rt_to_double(a.hit.t));
     }
 }

@@ -69,10 +69,10 @@ static int cap_crossings(fz_v3l o, fz_v3l d, long double s, fz_crossing *c)
 static void check_ray(const rt_scene *scene, rt_ray ray)
 {
     const rt_object *obj = &scene->objects[0];
-    rt_ray_setup rs = rt_ray_prepare(ray);
+    rt_ray_setup rs = rt_intersect_prepare(ray);
     rt_scene_hit hit = {0};
     bool found = rt_scene_nearest(scene, &rs, true, &hit);
-    /* The object-space ray exactly as rt_prim_intersect computes it. */
+    /* The object-space ray exactly as rt_scene_prim_intersect computes it. */
     fz_v3l o = fz_l(rt_affine_point(&obj->to_object, ray.origin));
     fz_v3l d = fz_l(rt_affine_vector(&obj->to_object, ray.direction));
     long double s = fz_l_len(o) + 0.75L;

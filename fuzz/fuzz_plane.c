@@ -1,8 +1,9 @@
 /* libFuzzer target: the Plane (the unit square in XY as two triangles sharing a
- * diagonal, rt_mesh_square) under a fuzzed transform. Besides the intersector
+ * diagonal, rt_builtin_mesh_square) under a fuzzed transform. Besides the intersector
  * invariants, rays through the shared diagonal check watertightness. */
 #include <math.h>
 
+#include "builtin_mesh.h"
 #include "check.h"
 #include "fixture.h"
 #include "oracle.h"
@@ -11,7 +12,7 @@
 static void check_ray(const rt_scene *scene, rt_ray ray)
 {
     const rt_object *obj = &scene->objects[0];
-    rt_ray_setup rs = rt_ray_prepare(ray);
+    rt_ray_setup rs = rt_intersect_prepare(ray);
     rt_scene_hit hit = {0}, brute = {0};
     bool found = rt_scene_nearest(scene, &rs, true, &hit), brute_found = rt_scene_nearest(scene, &rs, false, &brute);
     /* Both sides' hits must be real crossings before they can be compared. */
@@ -45,7 +46,7 @@ static void check_ray(const rt_scene *scene, rt_ray ray)
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     fz_bytes in = fz_bytes_of(data, size);
-    rt_mesh_desc square = rt_mesh_square();
+    rt_mesh_desc square = rt_builtin_mesh_square();
     rt_scene scene;
     fz_scene_one(&scene, RT_SHAPE_MESH, &square, fz_transform(&in));
     const rt_affine *world = &scene.objects[0].to_world;

@@ -7,6 +7,7 @@
  * survive. */
 #include <string.h>
 
+#include "builtin_mesh.h"
 #include "check.h"
 #include "fixture.h"
 #include "render.h"
@@ -87,8 +88,8 @@ static void describe(source *s, storage *st, rt_scene_desc *d)
         m->index_of_refraction = real(s, 0.5, 2.5);
     }
     /* Meshes: the Cube, the Plane and a free mesh of up to 6 vertices and 6 triangles. */
-    st->meshes[0] = rt_mesh_cube();
-    st->meshes[1] = rt_mesh_square();
+    st->meshes[0] = rt_builtin_mesh_cube();
+    st->meshes[1] = rt_builtin_mesh_square();
     rt_mesh_desc *free_mesh = &st->meshes[2];
     free_mesh->vertex_count = 1 + fz_below(&s->in, 6);
     free_mesh->triangle_count = fz_below(&s->in, 7);

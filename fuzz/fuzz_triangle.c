@@ -12,7 +12,7 @@ static void raw_ray(fz_bytes *in)
 {
     rt_vec3 a = fz_vec_raw(in), b = fz_vec_raw(in), c = fz_vec_raw(in);
     rt_ray ray = {fz_vec_raw(in), fz_vec_raw(in), fz_raw(in), fz_raw(in)};
-    rt_ray_setup rs = rt_ray_prepare(ray);
+    rt_ray_setup rs = rt_intersect_prepare(ray);
     rt_prim_hit h;
     if (rt_intersect_triangle(&rs, a, b, c, &h)) fz_check_t(h.t, ray.t_min, ray.t_max);
 }
@@ -53,7 +53,7 @@ static void check_hit(const rt_scene *scene, const rt_ray *ray, const rt_scene_h
 
 static void check_ray(const rt_scene *scene, rt_ray ray)
 {
-    rt_ray_setup rs = rt_ray_prepare(ray);
+    rt_ray_setup rs = rt_intersect_prepare(ray);
     rt_scene_hit hit = {0};
     bool found = rt_scene_nearest(scene, &rs, true, &hit);
     if (found) check_hit(scene, &ray, &hit);

@@ -23,7 +23,7 @@ build-fixed/rtk pack "$scene" -o "$out/scene.rtscene"
 arm-none-eabi-gcc -std=c11 -O2 -g -mcpu=cortex-m3 -mthumb -mfloat-abi=soft \
   -ffreestanding -fno-builtin -nostdlib -ffp-contract=off -DRT_REAL_FIXED -Icore \
   -Wall -Wextra -T targets/cortex-m/mps2.ld \
-  targets/cortex-m/*.c $(ls core/*.c | grep -v '/real_') core/real_fixed*.c "$out/scene.o" -lgcc \
+  targets/cortex-m/*.c $(make -s core-sources RT_REAL=fixed) "$out/scene.o" -lgcc \
   -o "$out/rtk.elf"
 arm-none-eabi-size "$out/rtk.elf"
 report=$(timeout 600 qemu-system-arm -M mps2-an385 -nographic -monitor none -serial none \

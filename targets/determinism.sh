@@ -65,7 +65,7 @@ for real in $reals; do
     for s in "${scenes[@]}"; do echo "$s $("$rtk" render "$(path_of "$s")" --width "$size" --height "$size" --hash --quiet $opts)" >>"$out"; done
     check "rtk $opts" "$ref" "$out"
   done
-  core_src=$(ls core/*.c | grep -v '/real_')" "$(ls core/real_"$real"*.c)
+  core_src=$(make -s core-sources RT_REAL="$real")
   flags="-std=c11 -ffp-contract=off -fno-math-errno -Icore"
   [ "$real" = fixed ] && flags="$flags -DRT_REAL_FIXED"
   while read -r name cc opt extra run; do

@@ -23,7 +23,7 @@ archive() {
   shift 2
   case " $* " in *" -DRT_REAL_FIXED "*) real=fixed ;; esac
   mkdir -p "$work/$name"
-  for src in $(ls core/*.c | grep -v '/real_') core/real_"$real"*.c; do
+  for src in $(make -s core-sources RT_REAL="$real"); do
     "$cc" -std=c11 -O2 -ffreestanding -fno-builtin -nostdlib -ffp-contract=off -fno-math-errno "$@" \
       -c "$src" -o "$work/$name/$(basename "$src" .c).o"
   done

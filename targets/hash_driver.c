@@ -59,7 +59,7 @@ int main(int argc, char **argv)
     rt_tracer tracer = {&scene, true, NULL};
     rt_render_region(&tracer, 0, 0, w, h, rgb);
     uint8_t digest[32];
-    rt_render_hash(rgb, w, h, digest);
+    rt_sha256_ppm(rgb, w, h, digest);
     for (int i = 0; i < 32; i++) printf("%02x", digest[i]);
     printf("\n");
     free(rgb);

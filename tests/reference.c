@@ -3,8 +3,8 @@
 
 #include <stdio.h>
 #include <stdlib.h>
-#include "parallel.h"
-#include "scene_build.h"
+#include "thread/threads.h"
+#include "load/scene_open.h"
 
 const char *rt_test_trace_dir(void)
 {
@@ -14,24 +14,24 @@ const char *rt_test_trace_dir(void)
     return path;
 }
 
-bool rt_test_render(const char *scene_path, unsigned threads, bool use_bvh, rt_image *out, char *err, size_t err_size)
+bool rt_test_render(const char *scene_path, unsigned threads, bool use_bvh, rtp_image *out, char *err, size_t err_size)
 {
-    rt_build_options opt = {0};
+    rtp_scene_options opt = {0};
     opt.max_memory = (size_t)4 << 30;
     opt.depth = -1;
     opt.aa = -1;
-    rt_built_scene built;
-    if (rt_scene_open(scene_path, &opt, &built, err, err_size) != 0) return false;
+    rtp_scene built;
+    if (rtp_scene_open(scene_path, &opt, &built, err, err_size) != 0) return false;
     out->width = built.scene.camera.width;
     out->height = built.scene.camera.height;
     out->rgb = calloc((size_t)out->width * out->height, 3);
     rt_tracer tracer = {&built.scene, use_bvh, NULL};
-    rt_parallel_options popt = {threads, 0, false, NULL};
-    bool ok = out->rgb && rt_render_parallel(&tracer, &popt, out->rgb);
-    rt_scene_close(&built);
+    rtp_threads_options popt = {threads, 0, false, NULL};
+    bool ok = out->rgb && rtp_threads_render(&tracer, &popt, out->rgb);
+    rtp_scene_close(&built);
     if (!ok) {
         snprintf(err, err_size, "%s: render failed", scene_path);
-        rt_image_free(out);
+        rtp_image_free(out);
     }
     return ok;
 }

@@ -4,12 +4,12 @@
 #define RT_TEST_REFERENCE_H
 
 #include <stdbool.h>
-#include "image.h"
+#include "image/image.h"
 
 /* The shared corpus folder (../shared/cse457/assets/trace unless RTK_SHARED says where shared/ is). */
 const char *rt_test_trace_dir(void);
 
 /* Renders a scene at its own settings on `threads` threads; false with err filled on failure. */
-bool rt_test_render(const char *scene_path, unsigned threads, bool use_bvh, rt_image *out, char *err, size_t err_size);
+bool rt_test_render(const char *scene_path, unsigned threads, bool use_bvh, rtp_image *out, char *err, size_t err_size);
 
 #endif

@@ -4,7 +4,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include "bvh.h"
-#include "parallel.h"
+#include "scene_query.h"
+#include "thread/threads.h"
 
 static uint64_t lcg_state;
 static double next_unit(void)
@@ -81,7 +82,7 @@ Test(bvh, nearest_hit_equals_brute_force)
     int hits = 0;
     for (int i = 0; i < 20000; i++) {
         rt_ray r = random_ray();
-        rt_ray_setup rs = rt_ray_prepare(r);
+        rt_ray_setup rs = rt_intersect_prepare(r);
         rt_scene_hit a, b;
         bool ha = rt_scene_nearest(&s, &rs, true, &a), hb = rt_scene_nearest(&s, &rs, false, &b);
         cr_assert_eq(ha, hb, "ray %d: BVH %s, brute force %s", i, ha ? "hit" : "missed", hb ? "hit" : "missed");
@@ -107,7 +108,7 @@ Test(bvh, any_hit_agrees_with_nearest)
         rt_ray r = random_ray();
         if (i % 4 != 0) r.t_max = next_range(0.01, 20);
         if (i % 7 == 0) r.direction.y = 0; /* a zero component: the general slab test */
-        rt_ray_setup rs = rt_ray_prepare(r);
+        rt_ray_setup rs = rt_intersect_prepare(r);
         rt_scene_hit h;
         bool want = rt_scene_nearest(&s, &rs, false, &h);
         cr_assert_eq(rt_scene_any(&s, &rs, true), want, "ray %d: BVH any-hit differs", i);
@@ -135,7 +136,7 @@ Test(bvh, axis_aligned_rays_equal_brute_force)
                           rt_from_int((int)(next_unit() * 31) - 15));
         rt_ray r = {o, rt_v3(rt_from_double(d[0]), rt_from_double(d[1]), rt_from_double(d[2])), RT_HIT_EPSILON,
                     RT_REAL_MAX};
-        rt_ray_setup rs = rt_ray_prepare(r);
+        rt_ray_setup rs = rt_intersect_prepare(r);
         rt_scene_hit a, b;
         bool ha = rt_scene_nearest(&s, &rs, true, &a), hb = rt_scene_nearest(&s, &rs, false, &b);
         cr_assert_eq(ha, hb, "ray %d: BVH %s, brute force %s", i, ha ? "hit" : "missed", hb ? "hit" : "missed");
@@ -205,7 +206,7 @@ Test(bvh, tree_does_not_depend_on_plan_or_workers)
     random_scene(&s, &memory, 3000, 50, 1);
     cr_assert_gt(s.bvh.node_count, 200);
     static const rt_bvh_plan plans[] = {{1, 1}, {4, 3}, {9, 1000}, {64, 64}, {300, 17}, {1000, 5000}, {3049, 1}};
-    rt_workers threads[] = {rt_thread_workers(1), rt_thread_workers(2), rt_thread_workers(3), rt_thread_workers(7)};
+    rt_workers threads[] = {rtp_threads_workers(1), rtp_threads_workers(2), rtp_threads_workers(3), rtp_threads_workers(7)};
     rt_workers backwards = {5, run_backwards};
     for (size_t p = 0; p < sizeof plans / sizeof plans[0]; p++) {
         assert_same_tree(&s, plans[p], NULL, "on this thread");
@@ -222,7 +223,7 @@ Test(bvh, degenerate_scenes_under_every_plan)
     lcg_state = 3;
     rt_scene s;
     void *memory;
-    rt_workers two = rt_thread_workers(2);
+    rt_workers two = rtp_threads_workers(2);
     random_scene(&s, &memory, 1, 0, 1);
     assert_same_tree(&s, (rt_bvh_plan){1, 1}, &two, "one triangle");
     free(memory);

@@ -2,10 +2,10 @@
  * that its colour is the rendered pixel's to the bit, that the terms add up, and the CLI
  * (text, JSON that parses, the SVG and its embedded image, usage errors). */
 #include "capture.h"
-#include "debug_cmd.h"
-#include "exit_codes.h"
+#include "cli/debug_cmd.h"
+#include "cli/exit_codes.h"
 #include "json_check.h"
-#include "pixel_trace.h"
+#include "debug/pixel_trace.h"
 #include "reference.h"
 #include "tmpdir.h"
 
@@ -20,9 +20,9 @@
 #define CAPACITY (1u << 16)
 
 static char dir[64], tiny_path[128], mc_path[128];
-static rt_built_scene built;
+static rtp_scene built;
 static bool built_open;
-static rt_pixel_trace pt;
+static rtp_pixel_trace pt;
 
 /* A glass ball on a floor, lit by a point light, 12x9 pixels, 4 samples per pixel. */
 static const char tiny_scene[] =
@@ -116,8 +116,8 @@ static void setup(void)
 
 static void teardown(void)
 {
-    rt_pixel_trace_free(&pt);
-    if (built_open) rt_scene_close(&built);
+    rtp_pixel_trace_free(&pt);
+    if (built_open) rtp_scene_close(&built);
     tmpdir_remove(dir);
 }
 
@@ -132,17 +132,17 @@ static const char *corpus(const char *name)
 
 static void open_scene(const char *path)
 {
-    if (built_open) rt_scene_close(&built);
-    rt_build_options opt = {.max_memory = (size_t)1 << 30, .depth = -1, .aa = -1};
-    char err[RT_ERR_SIZE];
-    cr_assert_eq(rt_scene_open(path, &opt, &built, err, sizeof err), RT_EXIT_OK, "%s", err);
+    if (built_open) rtp_scene_close(&built);
+    rtp_scene_options opt = {.max_memory = (size_t)1 << 30, .depth = -1, .aa = -1};
+    char err[RTP_ERR_SIZE];
+    cr_assert_eq(rtp_scene_open(path, &opt, &built, err, sizeof err), RTP_EXIT_OK, "%s", err);
     built_open = true;
 }
 
 static void trace(uint32_t x, uint32_t y, uint32_t sample)
 {
-    rt_pixel_trace_free(&pt);
-    cr_assert(rt_pixel_trace_run(&pt, &built, x, y, sample, CAPACITY));
+    rtp_pixel_trace_free(&pt);
+    cr_assert(rtp_pixel_trace_run(&pt, &built, x, y, sample, CAPACITY));
     cr_assert_not(pt.log.overflow);
 }
 
@@ -167,10 +167,10 @@ static void expect_vec(rt_vec3 v, double x, double y, double z, double tol, cons
 Test(debug, cylinder_at_the_image_centre)
 {
     open_scene(corpus("cyl_diffuse.yaml"));
-    trace(256, 256, RT_PIXEL_ALL_SAMPLES);
+    trace(256, 256, RTP_PIXEL_ALL_SAMPLES);
     const rt_ray_record *r = root();
     cr_assert(r->hit);
-    rt_hit_names n = rt_pixel_trace_names(&pt, r);
+    rtp_hit_names n = rtp_pixel_trace_names(&pt, r);
     cr_expect_str_eq(n.node, "Cylinder");
     cr_expect_str_eq(n.primitive, "cylinder");
     cr_expect_str_eq(n.material, "Cylinder");
@@ -194,10 +194,10 @@ Test(debug, cylinder_at_the_image_centre)
 Test(debug, floor_box_near_the_bottom)
 {
     open_scene(corpus("box_cyl_opaque_shadow.yaml"));
-    trace(256, 400, RT_PIXEL_ALL_SAMPLES);
+    trace(256, 400, RTP_PIXEL_ALL_SAMPLES);
     const rt_ray_record *r = root();
     cr_assert(r->hit);
-    rt_hit_names n = rt_pixel_trace_names(&pt, r);
+    rtp_hit_names n = rtp_pixel_trace_names(&pt, r);
     cr_expect_str_eq(n.node, "Box");
     cr_expect_str_eq(n.primitive, "triangle");
     cr_expect_null(n.part);
@@ -219,8 +219,8 @@ Test(debug, floor_box_near_the_bottom)
 Test(debug, floor_in_the_cylinders_shadow)
 {
     open_scene(corpus("box_cyl_opaque_shadow.yaml"));
-    trace(256, 290, RT_PIXEL_ALL_SAMPLES);
-    cr_assert_str_eq(rt_pixel_trace_names(&pt, root()).node, "Box");
+    trace(256, 290, RTP_PIXEL_ALL_SAMPLES);
+    cr_assert_str_eq(rtp_pixel_trace_names(&pt, root()).node, "Box");
     uint32_t j = pt.first_light[pt.first_root];
     cr_assert_neq(j, RT_NO_PARENT);
     const rt_light_record *l = &pt.log.lights[j];
@@ -228,7 +228,7 @@ Test(debug, floor_in_the_cylinders_shadow)
     expect_vec(l->contribution, 0, 0, 0, 0, "contribution (no ambient)");
     const rt_ray_record *s = &pt.log.rays[pt.first_shadow[j]];
     cr_assert(s->hit);
-    rt_hit_names n = rt_pixel_trace_names(&pt, s);
+    rtp_hit_names n = rtp_pixel_trace_names(&pt, s);
     cr_expect_str_eq(n.node, "Cylinder");
     cr_expect_str_eq(n.part, "bottom cap");
     cr_expect_float_eq(rt_to_double(s->surface.point.y), 1.0, 1e-9, "the cylinder's bottom is at y = 1");
@@ -239,12 +239,12 @@ Test(debug, floor_in_the_cylinders_shadow)
 Test(debug, refraction_through_the_lens)
 {
     open_scene(corpus("sphere_refract.yaml"));
-    trace(200, 250, RT_PIXEL_ALL_SAMPLES);
+    trace(200, 250, RTP_PIXEL_ALL_SAMPLES);
     const rt_ray_record *r = root();
     cr_assert(r->hit);
-    cr_expect_str_eq(rt_pixel_trace_names(&pt, r).node, "Sphere 1");
-    cr_expect_str_eq(rt_pixel_trace_names(&pt, r).material, "Lens");
-    cr_expect(rt_pixel_trace_material(&pt, r).kt.x > RT_ZERO);
+    cr_expect_str_eq(rtp_pixel_trace_names(&pt, r).node, "Sphere 1");
+    cr_expect_str_eq(rtp_pixel_trace_names(&pt, r).material, "Lens");
+    cr_expect(rtp_pixel_trace_material(&pt, r).kt.x > RT_ZERO);
     uint32_t c = pt.first_child[pt.first_root];
     while (c != RT_NO_PARENT && pt.log.rays[c].kind != RT_RAY_REFRACTION) c = pt.next_sibling[c];
     cr_assert_neq(c, RT_NO_PARENT, "no refraction ray");
@@ -253,7 +253,7 @@ Test(debug, refraction_through_the_lens)
     cr_expect_eq(inside->parent, pt.first_root);
     cr_assert(inside->hit);
     /* Inside the glass the ray leaves through the far side: the normal is flipped. */
-    cr_expect_str_eq(rt_pixel_trace_names(&pt, inside).node, "Sphere 1");
+    cr_expect_str_eq(rtp_pixel_trace_names(&pt, inside).node, "Sphere 1");
     cr_expect_not(inside->entering);
     expect_vec(inside->normal_used, XYZ(rt_v3_neg(inside->surface.normal)), 0, "flipped normal");
 }
@@ -262,18 +262,18 @@ Test(debug, refraction_through_the_lens)
 
 static void expect_pixels_match_render(const char *path, const uint32_t (*pixels)[2], int count)
 {
-    rt_image img;
-    char err[RT_ERR_SIZE];
+    rtp_image img;
+    char err[RTP_ERR_SIZE];
     cr_assert(rt_test_render(path, 2, true, &img, err, sizeof err), "%s", err);
     open_scene(path);
     for (int i = 0; i < count; i++) {
         uint32_t x = pixels[i][0], y = pixels[i][1];
-        trace(x, y, RT_PIXEL_ALL_SAMPLES);
+        trace(x, y, RTP_PIXEL_ALL_SAMPLES);
         const uint8_t *want = img.rgb + 3 * ((size_t)y * img.width + x);
         cr_expect_arr_eq(pt.rgb, want, 3, "%s (%u, %u): debug %u %u %u, render %u %u %u", path, x, y, pt.rgb[0],
                          pt.rgb[1], pt.rgb[2], want[0], want[1], want[2]);
     }
-    rt_image_free(&img);
+    rtp_image_free(&img);
 }
 
 Test(debug, bytes_equal_the_render_on_corpus_scenes)
@@ -291,14 +291,14 @@ Test(debug, bytes_equal_the_render_on_corpus_scenes)
 
 Test(debug, every_pixel_of_an_anti_aliased_scene)
 {
-    rt_image img;
-    char err[RT_ERR_SIZE];
+    rtp_image img;
+    char err[RTP_ERR_SIZE];
     cr_assert(rt_test_render(tiny_path, 1, true, &img, err, sizeof err), "%s", err);
     open_scene(tiny_path);
     cr_assert_eq(img.width * img.height, 12u * 9u);
     for (uint32_t y = 0; y < img.height; y++)
         for (uint32_t x = 0; x < img.width; x++) {
-            trace(x, y, RT_PIXEL_ALL_SAMPLES);
+            trace(x, y, RTP_PIXEL_ALL_SAMPLES);
             cr_expect_arr_eq(pt.rgb, img.rgb + 3 * (y * img.width + x), 3, "pixel (%u, %u)", x, y);
             /* Four camera rays whose colours average, in order, to the pixel's. */
             rt_vec3 sum = rt_v3(RT_ZERO, RT_ZERO, RT_ZERO);
@@ -310,13 +310,13 @@ Test(debug, every_pixel_of_an_anti_aliased_scene)
             rt_vec3 mean = rt_v3(rt_div(sum.x, four), rt_div(sum.y, four), rt_div(sum.z, four));
             expect_vec(pt.color, XYZ(mean), 0, "average of the samples");
         }
-    rt_image_free(&img);
+    rtp_image_free(&img);
 }
 
 Test(debug, one_sample_is_that_samples_camera_ray)
 {
     open_scene(tiny_path);
-    trace(6, 4, RT_PIXEL_ALL_SAMPLES);
+    trace(6, 4, RTP_PIXEL_ALL_SAMPLES);
     uint32_t id = pt.first_root;
     for (int k = 0; k < 2; k++) id = pt.next_sibling[id];
     rt_ray_record third = pt.log.rays[id];
@@ -339,7 +339,7 @@ static void expect_terms_add_up(void)
     for (uint32_t i = 0; i < pt.log.ray_count; i++) {
         const rt_ray_record *r = &pt.log.rays[i];
         if (!r->hit || r->kind == RT_RAY_SHADOW) continue;
-        rt_hit_material m = rt_pixel_trace_material(&pt, r);
+        rtp_hit_material m = rtp_pixel_trace_material(&pt, r);
         rt_vec3 sum = r->emissive;
         for (uint32_t j = pt.first_light[i]; j != RT_NO_PARENT; j = pt.next_light[j]) {
             const rt_light_record *l = &pt.log.lights[j];
@@ -363,16 +363,16 @@ Test(debug, the_terms_add_up)
     open_scene(tiny_path);
     for (uint32_t y = 0; y < 9; y += 2)
         for (uint32_t x = 0; x < 12; x += 3) {
-            trace(x, y, RT_PIXEL_ALL_SAMPLES);
+            trace(x, y, RTP_PIXEL_ALL_SAMPLES);
             expect_terms_add_up();
         }
     open_scene(corpus("sphere_refract.yaml"));
-    trace(200, 250, RT_PIXEL_ALL_SAMPLES);
+    trace(200, 250, RTP_PIXEL_ALL_SAMPLES);
     expect_terms_add_up();
     open_scene(mc_path);
     for (uint32_t y = 3; y < 12; y += 2)
         for (uint32_t x = 0; x < 16; x += 3) {
-            trace(x, y, RT_PIXEL_ALL_SAMPLES);
+            trace(x, y, RTP_PIXEL_ALL_SAMPLES);
             expect_terms_add_up();
         }
 }
@@ -389,7 +389,7 @@ Test(debug, monte_carlo_pixels_equal_the_render)
 Test(debug, camera_ray_ends_on_the_light)
 {
     open_scene(mc_path);
-    trace(8, 1, RT_PIXEL_ALL_SAMPLES);
+    trace(8, 1, RTP_PIXEL_ALL_SAMPLES);
     uint32_t n = 0;
     for (uint32_t id = pt.first_root; id != RT_NO_PARENT; id = pt.next_sibling[id], n++) {
         const rt_ray_record *r = &pt.log.rays[id];
@@ -416,7 +416,7 @@ Test(debug, glossy_rays_and_the_lights_cosine)
     open_scene(mc_path);
     uint32_t glossy = 0, lit = 0;
     for (uint32_t x = 0; x < 16; x += 5) {
-        trace(x, 9, RT_PIXEL_ALL_SAMPLES);
+        trace(x, 9, RTP_PIXEL_ALL_SAMPLES);
         for (uint32_t i = 0; i < pt.log.ray_count; i++) {
             const rt_ray_record *r = &pt.log.rays[i];
             cr_expect_neq(r->kind, RT_RAY_REFLECTION, "a mirror ray in Monte Carlo mode");
@@ -447,11 +447,11 @@ Test(debug, glossy_rays_and_the_lights_cosine)
 Test(debug, a_full_log_cuts_the_tree_not_the_colour)
 {
     open_scene(corpus("sphere_refract.yaml"));
-    trace(200, 250, RT_PIXEL_ALL_SAMPLES);
+    trace(200, 250, RTP_PIXEL_ALL_SAMPLES);
     rt_vec3 full = pt.color;
     cr_assert_gt(pt.log.ray_count, 3u);
-    rt_pixel_trace_free(&pt);
-    cr_assert(rt_pixel_trace_run(&pt, &built, 200, 250, RT_PIXEL_ALL_SAMPLES, 3));
+    rtp_pixel_trace_free(&pt);
+    cr_assert(rtp_pixel_trace_run(&pt, &built, 200, 250, RTP_PIXEL_ALL_SAMPLES, 3));
     cr_expect(pt.log.overflow);
     cr_expect_eq(pt.log.ray_count, 3u);
     expect_vec(pt.color, XYZ(full), 0, "colour");
@@ -468,13 +468,13 @@ static int debug_cmd(char **out, ...)
     va_start(ap, out);
     for (const char *s; argc < 23 && (s = va_arg(ap, const char *)) != NULL;) argv[argc++] = (char *)s;
     va_end(ap);
-    return capture_stdout(rt_cmd_debug, argc, argv, out);
+    return capture_stdout(rtp_cmd_debug, argc, argv, out);
 }
 
 Test(debug, text_names_what_was_hit)
 {
     char *out;
-    cr_assert_eq(debug_cmd(&out, corpus("box_cyl_opaque_shadow.yaml"), "--pixel", "256,290", NULL), RT_EXIT_OK);
+    cr_assert_eq(debug_cmd(&out, corpus("box_cyl_opaque_shadow.yaml"), "--pixel", "256,290", NULL), RTP_EXIT_OK);
     cr_assert_not_null(out);
     cr_expect(strstr(out, "camera ray, depth 0") != NULL, "%s", out);
     cr_expect(strstr(out, "hit 'Box': triangle ") != NULL, "%s", out);
@@ -492,18 +492,18 @@ Test(debug, json_parses)
     static const char *const pixels[] = {"200,250", "0,0", "256,256", "100,400"};
     for (int i = 0; i < 4; i++) {
         char *out;
-        cr_assert_eq(debug_cmd(&out, corpus("sphere_refract.yaml"), "--json", "--pixel", pixels[i], NULL), RT_EXIT_OK);
+        cr_assert_eq(debug_cmd(&out, corpus("sphere_refract.yaml"), "--json", "--pixel", pixels[i], NULL), RTP_EXIT_OK);
         cr_assert_not_null(out);
         cr_expect(json_is_valid(out), "pixel %s: not JSON:\n%s", pixels[i], out);
         free(out);
     }
     char *out;
-    cr_assert_eq(debug_cmd(&out, tiny_path, "--json", "--pixel", "6,4", "--sample", "3", NULL), RT_EXIT_OK);
+    cr_assert_eq(debug_cmd(&out, tiny_path, "--json", "--pixel", "6,4", "--sample", "3", NULL), RTP_EXIT_OK);
     cr_expect(json_is_valid(out), "%s", out);
     cr_expect(strstr(out, "\"sample\": 3") != NULL, "%s", out);
     cr_expect(strstr(out, "\"samples_per_pixel\": 4") != NULL, "%s", out);
     free(out);
-    cr_assert_eq(debug_cmd(&out, corpus("sphere_refract.yaml"), "--pixel", "200,250", "--json", NULL), RT_EXIT_OK);
+    cr_assert_eq(debug_cmd(&out, corpus("sphere_refract.yaml"), "--pixel", "200,250", "--json", NULL), RTP_EXIT_OK);
     cr_expect(strstr(out, "\"node\": \"Sphere 1\"") != NULL, "%s", out);
     cr_expect(strstr(out, "\"kind\": \"refraction\"") != NULL, "%s", out);
     free(out);
@@ -519,22 +519,22 @@ Test(debug, json_checker_rejects_what_it_should)
 Test(debug, monte_carlo_text_and_json)
 {
     char *out;
-    cr_assert_eq(debug_cmd(&out, mc_path, "--pixel", "8,1", "--sample", "0", NULL), RT_EXIT_OK);
+    cr_assert_eq(debug_cmd(&out, mc_path, "--pixel", "8,1", "--sample", "0", NULL), RTP_EXIT_OK);
     cr_expect(strstr(out, "ends on light 0 (area), t ") != NULL, "%s", out);
     cr_expect(strstr(out, "returns (64, 57.6, 51.2)") != NULL, "%s", out);
     free(out);
-    cr_assert_eq(debug_cmd(&out, mc_path, "--pixel", "8,1", "--sample", "0", "--json", NULL), RT_EXIT_OK);
+    cr_assert_eq(debug_cmd(&out, mc_path, "--pixel", "8,1", "--sample", "0", "--json", NULL), RTP_EXIT_OK);
     cr_expect(json_is_valid(out), "%s", out);
     cr_expect(strstr(out, "\"hit\": null, \"light_hit\": {\"light\": 0, \"kind\": \"area\", \"t\": ") != NULL, "%s", out);
     cr_expect(strstr(out, "\"emission\": [64, 57.6") != NULL, "%s", out);
     free(out);
-    cr_assert_eq(debug_cmd(&out, mc_path, "--pixel", "8,9", NULL), RT_EXIT_OK);
+    cr_assert_eq(debug_cmd(&out, mc_path, "--pixel", "8,9", NULL), RTP_EXIT_OK);
     cr_expect(strstr(out, "glossy ray, depth 1") != NULL, "%s", out);
     cr_expect(strstr(out, "half vector (") != NULL, "%s", out);
     cr_expect(strstr(out, "light 0 (area)") != NULL, "%s", out);
     cr_expect(strstr(out, "light cosine 0.") != NULL, "%s", out);
     free(out);
-    cr_assert_eq(debug_cmd(&out, mc_path, "--pixel", "8,9", "--json", NULL), RT_EXIT_OK);
+    cr_assert_eq(debug_cmd(&out, mc_path, "--pixel", "8,9", "--json", NULL), RTP_EXIT_OK);
     cr_expect(json_is_valid(out), "%s", out);
     cr_expect(strstr(out, "\"kind\": \"glossy\"") != NULL, "%s", out);
     cr_expect(strstr(out, "\"half_vector\": [") != NULL, "%s", out);
@@ -544,7 +544,7 @@ Test(debug, monte_carlo_text_and_json)
     free(out);
     char svg_path[160];
     snprintf(svg_path, sizeof svg_path, "%s/mc.svg", dir);
-    cr_assert_eq(debug_cmd(&out, mc_path, "--pixel", "8,9", "--svg", svg_path, NULL), RT_EXIT_OK);
+    cr_assert_eq(debug_cmd(&out, mc_path, "--pixel", "8,9", "--svg", svg_path, NULL), RTP_EXIT_OK);
     free(out);
     FILE *f = fopen(svg_path, "rb");
     cr_assert_not_null(f);
@@ -581,12 +581,12 @@ static size_t embedded_png(const char *svg, uint8_t *out, size_t cap)
 
 Test(debug, svg_embeds_the_render_and_draws_the_rays)
 {
-    char svg_path[160], png_path[160], err[RT_ERR_SIZE];
+    char svg_path[160], png_path[160], err[RTP_ERR_SIZE];
     snprintf(svg_path, sizeof svg_path, "%s/tree.svg", dir);
     snprintf(png_path, sizeof png_path, "%s/embedded.png", dir);
     char *out;
     cr_assert_eq(debug_cmd(&out, corpus("sphere_refract.yaml"), "--pixel", "200,250", "--svg", svg_path, NULL),
-                 RT_EXIT_OK);
+                 RTP_EXIT_OK);
     free(out);
     FILE *f = fopen(svg_path, "rb");
     cr_assert_not_null(f);
@@ -605,13 +605,13 @@ Test(debug, svg_embeds_the_render_and_draws_the_rays)
     f = fopen(png_path, "wb");
     cr_assert_eq(fwrite(png, 1, png_size, f), png_size);
     fclose(f);
-    rt_image shown, rendered;
-    cr_assert(rt_image_read(png_path, &shown, err, sizeof err), "%s", err);
+    rtp_image shown, rendered;
+    cr_assert(rtp_image_read(png_path, &shown, err, sizeof err), "%s", err);
     cr_assert(rt_test_render(corpus("sphere_refract.yaml"), 2, true, &rendered, err, sizeof err), "%s", err);
     cr_assert(shown.width == rendered.width && shown.height == rendered.height);
     cr_expect_arr_eq(shown.rgb, rendered.rgb, (size_t)shown.width * shown.height * 3, "the embedded image");
-    rt_image_free(&shown);
-    rt_image_free(&rendered);
+    rtp_image_free(&shown);
+    rtp_image_free(&rendered);
 }
 
 Test(debug, mesh_scene_svg_draws_triangle_edges)
@@ -619,7 +619,7 @@ Test(debug, mesh_scene_svg_draws_triangle_edges)
     char svg_path[160];
     snprintf(svg_path, sizeof svg_path, "%s/tiny.svg", dir);
     char *out;
-    cr_assert_eq(debug_cmd(&out, tiny_path, "--pixel", "6,6", "--svg", svg_path, NULL), RT_EXIT_OK);
+    cr_assert_eq(debug_cmd(&out, tiny_path, "--pixel", "6,6", "--svg", svg_path, NULL), RTP_EXIT_OK);
     free(out);
     FILE *f = fopen(svg_path, "rb");
     cr_assert_not_null(f);
@@ -636,22 +636,22 @@ Test(debug, bad_arguments_are_usage_errors)
     const char *scene = corpus("cyl_diffuse.yaml");
     char *out;
     for (size_t i = 0; i < sizeof pixels / sizeof pixels[0]; i++) {
-        cr_expect_eq(debug_cmd(&out, scene, "--pixel", pixels[i], NULL), RT_EXIT_USAGE, "--pixel '%s'", pixels[i]);
+        cr_expect_eq(debug_cmd(&out, scene, "--pixel", pixels[i], NULL), RTP_EXIT_USAGE, "--pixel '%s'", pixels[i]);
         free(out);
     }
-    cr_expect_eq(debug_cmd(&out, scene, "--pixel", "511,511", NULL), RT_EXIT_OK);
+    cr_expect_eq(debug_cmd(&out, scene, "--pixel", "511,511", NULL), RTP_EXIT_OK);
     free(out);
-    cr_expect_eq(debug_cmd(&out, scene, "--pixel", "600,10", "--width", "601", NULL), RT_EXIT_OK, "--width widens");
+    cr_expect_eq(debug_cmd(&out, scene, "--pixel", "600,10", "--width", "601", NULL), RTP_EXIT_OK, "--width widens");
     free(out);
-    cr_expect_eq(debug_cmd(&out, scene, NULL), RT_EXIT_USAGE, "no --pixel");
+    cr_expect_eq(debug_cmd(&out, scene, NULL), RTP_EXIT_USAGE, "no --pixel");
     free(out);
-    cr_expect_eq(debug_cmd(&out, "--pixel", "1,1", NULL), RT_EXIT_USAGE, "no scene");
+    cr_expect_eq(debug_cmd(&out, "--pixel", "1,1", NULL), RTP_EXIT_USAGE, "no scene");
     free(out);
-    cr_expect_eq(debug_cmd(&out, scene, "--pixel", "1,1", "--sample", "1", NULL), RT_EXIT_USAGE, "1 sample only");
+    cr_expect_eq(debug_cmd(&out, scene, "--pixel", "1,1", "--sample", "1", NULL), RTP_EXIT_USAGE, "1 sample only");
     free(out);
-    cr_expect_eq(debug_cmd(&out, tiny_path, "--pixel", "1,1", "--sample", "3", NULL), RT_EXIT_OK);
+    cr_expect_eq(debug_cmd(&out, tiny_path, "--pixel", "1,1", "--sample", "3", NULL), RTP_EXIT_OK);
     free(out);
-    cr_expect_eq(debug_cmd(&out, scene, "--pixel", "1,1", "--bogus", NULL), RT_EXIT_USAGE);
+    cr_expect_eq(debug_cmd(&out, scene, "--pixel", "1,1", "--bogus", NULL), RTP_EXIT_USAGE);
     free(out);
 }
 
@@ -661,9 +661,9 @@ Test(debug, unreadable_scene_and_unwritable_svg)
     snprintf(missing, sizeof missing, "%s/none.yaml", dir);
     snprintf(bad_svg, sizeof bad_svg, "%s/no/such/folder/tree.svg", dir);
     char *out;
-    cr_expect_eq(debug_cmd(&out, missing, "--pixel", "1,1", NULL), RT_EXIT_INPUT);
+    cr_expect_eq(debug_cmd(&out, missing, "--pixel", "1,1", NULL), RTP_EXIT_INPUT);
     free(out);
-    cr_expect_eq(debug_cmd(&out, tiny_path, "--pixel", "1,1", "--svg", bad_svg, NULL), RT_EXIT_OUTPUT);
+    cr_expect_eq(debug_cmd(&out, tiny_path, "--pixel", "1,1", "--svg", bad_svg, NULL), RTP_EXIT_OUTPUT);
     free(out);
     cr_expect_eq(tmpdir_count(dir), 2, "only tiny.yaml and mc.yaml: no partial SVG left behind");
 }

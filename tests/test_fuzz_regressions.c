@@ -53,7 +53,7 @@ Test(fuzz_regressions, ray_in_a_triangles_plane_misses)
     rt_vec3 ab = rt_v3_sub(b, a), ac = rt_v3_sub(c, a);
     rt_ray r = {rt_v3_add(rt_v3_add(a, rt_v3_scale(ac, -0.3)), rt_v3_scale(ab, -5)), rt_v3_normalize(ab),
                 RT_HIT_EPSILON, RT_REAL_MAX};
-    rt_ray_setup rs = rt_ray_prepare(r);
+    rt_ray_setup rs = rt_intersect_prepare(r);
     rt_prim_hit h;
     cr_assert_not(rt_intersect_triangle(&rs, a, b, c, &h), "phantom hit at t %g", h.t);
 }

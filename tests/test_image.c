@@ -1,7 +1,8 @@
 /* Image I/O: PNG and PPM round trips, the solution images, hostile files, atomic writes. */
-#include "image.h"
+#include "image/image.h"
 #include "reference.h"
 #include "tmpdir.h"
+#include "image/file_write.h"
 
 #include <criterion/criterion.h>
 #include <stdio.h>
@@ -56,25 +57,25 @@ static unsigned char *get_file(const char *path, size_t *size)
 }
 
 /* 7x5 with every channel different, so a swapped axis or channel shows. */
-static rt_image pattern(uint8_t storage[7 * 5 * 3])
+static rtp_image pattern(uint8_t storage[7 * 5 * 3])
 {
     for (int i = 0; i < 7 * 5 * 3; i++)
         storage[i] = (uint8_t)(i * 37 + 11);
-    return (rt_image){.width = 7, .height = 5, .rgb = storage};
+    return (rtp_image){.width = 7, .height = 5, .rgb = storage};
 }
 
 static void round_trip(const char *name)
 {
     uint8_t px[7 * 5 * 3];
-    rt_image img = pattern(px), back;
+    rtp_image img = pattern(px), back;
     char path[128], err[256];
     in_dir(path, sizeof path, name);
-    cr_assert(rt_image_write(path, &img, err, sizeof err), "%s", err);
-    cr_assert(rt_image_read(path, &back, err, sizeof err), "%s", err);
+    cr_assert(rtp_image_write(path, &img, err, sizeof err), "%s", err);
+    cr_assert(rtp_image_read(path, &back, err, sizeof err), "%s", err);
     cr_assert_eq(back.width, 7);
     cr_assert_eq(back.height, 5);
     cr_assert_arr_eq(back.rgb, px, sizeof px);
-    rt_image_free(&back);
+    rtp_image_free(&back);
     cr_assert_null(back.rgb);
 }
 
@@ -91,14 +92,14 @@ Test(image, ppm_round_trip_is_bit_identical)
 Test(image, png_chosen_by_extension_in_any_case)
 {
     uint8_t px[7 * 5 * 3];
-    rt_image img = pattern(px);
+    rtp_image img = pattern(px);
     char path[128], err[256];
     size_t size;
-    cr_assert(rt_image_write(in_dir(path, sizeof path, "up.PNG"), &img, err, sizeof err), "%s", err);
+    cr_assert(rtp_image_write(in_dir(path, sizeof path, "up.PNG"), &img, err, sizeof err), "%s", err);
     unsigned char *bytes = get_file(path, &size);
     cr_expect_arr_eq(bytes, "\x89PNG\r\n\x1a\n", 8);
     free(bytes);
-    cr_assert(rt_image_write(in_dir(path, sizeof path, "a.png.out"), &img, err, sizeof err), "%s", err);
+    cr_assert(rtp_image_write(in_dir(path, sizeof path, "a.png.out"), &img, err, sizeof err), "%s", err);
     bytes = get_file(path, &size);
     cr_expect_arr_eq(bytes, "P6\n", 3);
     free(bytes);
@@ -108,9 +109,9 @@ Test(image, png_chosen_by_extension_in_any_case)
 Test(image, ppm_bytes_are_the_canonical_p6)
 {
     uint8_t px[7 * 5 * 3];
-    rt_image img = pattern(px);
+    rtp_image img = pattern(px);
     char path[128], err[256];
-    cr_assert(rt_image_write(in_dir(path, sizeof path, "c.ppm"), &img, err, sizeof err), "%s", err);
+    cr_assert(rtp_image_write(in_dir(path, sizeof path, "c.ppm"), &img, err, sizeof err), "%s", err);
     size_t size;
     unsigned char *bytes = get_file(path, &size);
     cr_assert_eq(size, 11 + sizeof px);
@@ -124,26 +125,26 @@ Test(image, ppm_header_comments_and_whitespace)
     static const char file[] = "P6 # made by hand\n# second comment\n2\t1\r\n255\n\x01\x02\x03\x04\x05\x06";
     char path[128], err[256];
     put_file(in_dir(path, sizeof path, "c.ppm"), file, sizeof file - 1);
-    rt_image img;
-    cr_assert(rt_image_read(path, &img, err, sizeof err), "%s", err);
+    rtp_image img;
+    cr_assert(rtp_image_read(path, &img, err, sizeof err), "%s", err);
     cr_expect_eq(img.width, 2);
     cr_expect_eq(img.height, 1);
     cr_expect_arr_eq(img.rgb, "\x01\x02\x03\x04\x05\x06", 6);
-    rt_image_free(&img);
+    rtp_image_free(&img);
 }
 
 /* Expected pixels were looked up once with python3 (tools/fidelity's read_png_rgb). */
 static void expect_pixel(const char *name, uint32_t x, uint32_t y, int r, int g, int b)
 {
-    rt_image img;
+    rtp_image img;
     char path[4096], err[4200];
-    cr_assert(rt_image_read(solution(path, sizeof path, name), &img, err, sizeof err), "%s", err);
+    cr_assert(rtp_image_read(solution(path, sizeof path, name), &img, err, sizeof err), "%s", err);
     cr_expect_eq(img.width, 512);
     cr_expect_eq(img.height, 512);
     const uint8_t *p = img.rgb + 3 * ((size_t)y * img.width + x);
     cr_expect(p[0] == r && p[1] == g && p[2] == b, "%s (%u, %u) is (%d, %d, %d), want (%d, %d, %d)",
               name, x, y, p[0], p[1], p[2], r, g, b);
-    rt_image_free(&img);
+    rtp_image_free(&img);
 }
 
 Test(image, reads_rgb_solution_png)
@@ -160,9 +161,9 @@ Test(image, reads_rgba_solution_png_dropping_alpha)
 
 static void expect_read_error(const char *path, const char *want)
 {
-    rt_image img = {.width = 1, .height = 1, .rgb = (uint8_t *)"junk"};
+    rtp_image img = {.width = 1, .height = 1, .rgb = (uint8_t *)"junk"};
     char err[256] = "";
-    cr_assert_not(rt_image_read(path, &img, err, sizeof err), "%s read without error", path);
+    cr_assert_not(rtp_image_read(path, &img, err, sizeof err), "%s read without error", path);
     cr_expect_null(img.rgb, "a failed read leaves no pixels");
     cr_expect(strncmp(err, path, strlen(path)) == 0 && strncmp(err + strlen(path), ": ", 2) == 0,
               "error '%s' does not start with the path", err);
@@ -248,7 +249,7 @@ Test(image, atomic_write_into_missing_folder_leaves_nothing)
 {
     char path[128], err[256] = "";
     in_dir(path, sizeof path, "missing/out.ppm");
-    cr_assert_not(rt_write_file_atomic(path, "x", 1, err, sizeof err));
+    cr_assert_not(rtp_file_write_atomic(path, "x", 1, err, sizeof err));
     cr_expect(strstr(err, path) == err && strstr(err, "directory does not exist"), "error: %s", err);
     cr_expect_eq(tmpdir_count(dir), 0);
 }
@@ -258,7 +259,7 @@ Test(image, atomic_write_over_a_directory_leaves_nothing)
     char path[128], err[256] = "";
     in_dir(path, sizeof path, "sub");
     cr_assert_eq(mkdir(path, 0777), 0);
-    cr_assert_not(rt_write_file_atomic(path, "x", 1, err, sizeof err));
+    cr_assert_not(rtp_file_write_atomic(path, "x", 1, err, sizeof err));
     cr_expect(strstr(err, "is a directory"), "error: %s", err);
     cr_expect_eq(tmpdir_count(dir), 1, "a temporary file was left behind");
     cr_expect_eq(tmpdir_count(path), 0);
@@ -269,7 +270,7 @@ Test(image, atomic_write_replaces_existing_file)
     char path[128], err[256];
     in_dir(path, sizeof path, "f.txt");
     put_file(path, "old contents, longer than the new", 33);
-    cr_assert(rt_write_file_atomic(path, "new", 3, err, sizeof err), "%s", err);
+    cr_assert(rtp_file_write_atomic(path, "new", 3, err, sizeof err), "%s", err);
     size_t size;
     unsigned char *bytes = get_file(path, &size);
     cr_expect_eq(size, 3);
@@ -283,7 +284,7 @@ Test(image, atomic_write_honours_umask)
 {
     char path[128], err[256];
     mode_t old = umask(027);
-    bool ok = rt_write_file_atomic(in_dir(path, sizeof path, "m"), "x", 1, err, sizeof err);
+    bool ok = rtp_file_write_atomic(in_dir(path, sizeof path, "m"), "x", 1, err, sizeof err);
     umask(old);
     cr_assert(ok, "%s", err);
     struct stat st;
@@ -294,12 +295,12 @@ Test(image, atomic_write_honours_umask)
 Test(image, writing_nothing_fails)
 {
     char path[128], err[256] = "";
-    rt_image none = {.width = 2, .height = 2, .rgb = NULL};
-    cr_expect_not(rt_image_write(in_dir(path, sizeof path, "n.ppm"), &none, err, sizeof err));
+    rtp_image none = {.width = 2, .height = 2, .rgb = NULL};
+    cr_expect_not(rtp_image_write(in_dir(path, sizeof path, "n.ppm"), &none, err, sizeof err));
     cr_expect(strstr(err, "no pixels"), "error: %s", err);
     uint8_t px[3] = {0};
-    rt_image empty = {.width = 0, .height = 1, .rgb = px};
-    cr_expect_not(rt_image_write(path, &empty, err, sizeof err));
+    rtp_image empty = {.width = 0, .height = 1, .rgb = px};
+    cr_expect_not(rtp_image_write(path, &empty, err, sizeof err));
     cr_expect(strstr(err, "zero width"), "error: %s", err);
     cr_expect_eq(tmpdir_count(dir), 0);
 }

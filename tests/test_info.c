@@ -1,11 +1,11 @@
 /* `rtk info`: counts of corpus and hand-written scenes, the SAH cost on a hand-made BVH,
  * and the command's text, JSON and exit codes. */
 #include "capture.h"
-#include "exit_codes.h"
-#include "info_cmd.h"
+#include "cli/exit_codes.h"
+#include "cli/info_cmd.h"
 #include "json_check.h"
 #include "reference.h"
-#include "scene_stats.h"
+#include "debug/scene_stats.h"
 #include "tmpdir.h"
 
 #include <criterion/criterion.h>
@@ -17,9 +17,9 @@
 #include <sys/stat.h>
 
 static char dir[64], scene_path[128];
-static rt_built_scene built;
+static rtp_scene built;
 static bool built_open;
-static rt_scene_stats st;
+static rtp_scene_stats st;
 
 /* A subdivided Cube, a Plane, a sphere and a cylinder; a point, a directional and an area
  * light; a textured material (3x2 texture) and one that is not trace compatible. */
@@ -52,13 +52,13 @@ static const char scene_text[] =
 static void setup(void)
 {
     cr_assert(tmpdir_make(dir, sizeof dir, "info"), "cannot create a scratch folder");
-    char path[160], err[RT_ERR_SIZE];
+    char path[160], err[RTP_ERR_SIZE];
     snprintf(path, sizeof path, "%s/assets", dir);
     cr_assert_eq(mkdir(path, 0777), 0);
     snprintf(path, sizeof path, "%s/assets/checks.png", dir);
     uint8_t rgb[3 * 2 * 3] = {255, 255, 255, 0, 0, 0, 255, 255, 255, 0, 0, 0, 255, 255, 255, 0, 0, 0};
-    rt_image texture = {3, 2, rgb};
-    cr_assert(rt_image_write(path, &texture, err, sizeof err), "%s", err);
+    rtp_image texture = {3, 2, rgb};
+    cr_assert(rtp_image_write(path, &texture, err, sizeof err), "%s", err);
     snprintf(scene_path, sizeof scene_path, "%s/scene.yaml", dir);
     FILE *f = fopen(scene_path, "wb");
     cr_assert_not_null(f);
@@ -69,7 +69,7 @@ static void setup(void)
 
 static void teardown(void)
 {
-    if (built_open) rt_scene_close(&built);
+    if (built_open) rtp_scene_close(&built);
     tmpdir_remove(dir);
 }
 
@@ -84,11 +84,11 @@ static const char *corpus(const char *name)
 
 static void open_scene(const char *path)
 {
-    rt_build_options opt = {.max_memory = (size_t)1 << 30, .depth = -1, .aa = -1};
-    char err[RT_ERR_SIZE];
-    cr_assert_eq(rt_scene_open(path, &opt, &built, err, sizeof err), RT_EXIT_OK, "%s", err);
+    rtp_scene_options opt = {.max_memory = (size_t)1 << 30, .depth = -1, .aa = -1};
+    char err[RTP_ERR_SIZE];
+    cr_assert_eq(rtp_scene_open(path, &opt, &built, err, sizeof err), RTP_EXIT_OK, "%s", err);
     built_open = true;
-    rt_scene_stats_compute(&built, &st);
+    rtp_scene_stats_compute(&built, &st);
 }
 
 Test(info, cyl_diffuse_counts)
@@ -162,11 +162,11 @@ Test(info, sah_cost_of_a_hand_made_tree)
                         {0, 1, 0, 0},
                         {1, 2, RT_BVH_NO_CHILD, RT_BVH_NO_CHILD}};
     rt_bvh bvh = {&root, 1, NULL, 2, g, RT_ONE};
-    cr_expect_float_eq(rt_bvh_sah_cost(&bvh, 3), 3.0, 1e-12);
+    cr_expect_float_eq(rtp_scene_stats_sah_cost(&bvh, 3), 3.0, 1e-12);
     rt_bvh_node lone = {{{o}, {o}, {o}, {l}, {l}, {l}}, {0}, {2, RT_BVH_NO_CHILD, RT_BVH_NO_CHILD, RT_BVH_NO_CHILD}};
     rt_bvh leaf = {&lone, 1, NULL, 2, g, RT_ONE};
-    cr_expect_float_eq(rt_bvh_sah_cost(&leaf, 2), 3.0, 1e-12, "a lone leaf: the root's visit and one test per primitive");
-    cr_expect_eq(rt_bvh_sah_cost(&bvh, 0), 0.0, "no primitives");
+    cr_expect_float_eq(rtp_scene_stats_sah_cost(&leaf, 2), 3.0, 1e-12, "a lone leaf: the root's visit and one test per primitive");
+    cr_expect_eq(rtp_scene_stats_sah_cost(&bvh, 0), 0.0, "no primitives");
 }
 
 /* Runs `rtk info` with the arguments up to NULL; its output in *out. */
@@ -178,13 +178,13 @@ static int info_cmd(char **out, ...)
     va_start(ap, out);
     for (const char *s; argc < 15 && (s = va_arg(ap, const char *)) != NULL;) argv[argc++] = (char *)s;
     va_end(ap);
-    return capture_stdout(rt_cmd_info, argc, argv, out);
+    return capture_stdout(rtp_cmd_info, argc, argv, out);
 }
 
 Test(info, text_output)
 {
     char *out;
-    cr_assert_eq(info_cmd(&out, scene_path, NULL), RT_EXIT_OK);
+    cr_assert_eq(info_cmd(&out, scene_path, NULL), RTP_EXIT_OK);
     cr_assert_not_null(out);
     cr_expect(strstr(out, "nodes       9 enabled\n") != NULL, "%s", out);
     cr_expect(strstr(out, "primitives  1 sphere, 1 cylinder, 2 meshes with 194 triangles (14 before subdivision)\n"),
@@ -205,11 +205,11 @@ Test(info, json_parses_and_counts)
                                          "trimeshes/chess.yaml", "more/cornell_ray.yaml"};
     char *out;
     for (int i = 0; i < 4; i++) {
-        cr_assert_eq(info_cmd(&out, corpus(scenes[i]), "--json", NULL), RT_EXIT_OK, "%s", scenes[i]);
+        cr_assert_eq(info_cmd(&out, corpus(scenes[i]), "--json", NULL), RTP_EXIT_OK, "%s", scenes[i]);
         cr_expect(json_is_valid(out), "%s: not JSON:\n%s", scenes[i], out);
         free(out);
     }
-    cr_assert_eq(info_cmd(&out, "--json", scene_path, NULL), RT_EXIT_OK);
+    cr_assert_eq(info_cmd(&out, "--json", scene_path, NULL), RTP_EXIT_OK);
     cr_expect(json_is_valid(out), "%s", out);
     cr_expect(strstr(out, "\"primitives\": {\"spheres\": 1, \"cylinders\": 1, \"meshes\": 2, \"triangles\": 194, "
                           "\"triangles_before_subdivision\": 14}"),
@@ -224,14 +224,14 @@ Test(info, errors)
 {
     char missing[160], *out;
     snprintf(missing, sizeof missing, "%s/none.yaml", dir);
-    cr_expect_eq(info_cmd(&out, missing, NULL), RT_EXIT_INPUT);
+    cr_expect_eq(info_cmd(&out, missing, NULL), RTP_EXIT_INPUT);
     free(out);
-    cr_expect_eq(info_cmd(&out, NULL), RT_EXIT_USAGE);
+    cr_expect_eq(info_cmd(&out, NULL), RTP_EXIT_USAGE);
     free(out);
-    cr_expect_eq(info_cmd(&out, scene_path, scene_path, NULL), RT_EXIT_USAGE);
+    cr_expect_eq(info_cmd(&out, scene_path, scene_path, NULL), RTP_EXIT_USAGE);
     free(out);
-    cr_expect_eq(info_cmd(&out, scene_path, "--bogus", NULL), RT_EXIT_USAGE);
+    cr_expect_eq(info_cmd(&out, scene_path, "--bogus", NULL), RTP_EXIT_USAGE);
     free(out);
-    cr_expect_eq(info_cmd(&out, scene_path, "--max-memory", "1K", NULL), RT_EXIT_MEMORY);
+    cr_expect_eq(info_cmd(&out, scene_path, "--max-memory", "1K", NULL), RTP_EXIT_MEMORY);
     free(out);
 }

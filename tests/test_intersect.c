@@ -6,7 +6,7 @@
 static rt_ray_setup setup(rt_vec3 o, rt_vec3 d)
 {
     rt_ray r = {o, rt_v3_normalize(d), RT_HIT_EPSILON, RT_REAL_MAX};
-    return rt_ray_prepare(r);
+    return rt_intersect_prepare(r);
 }
 
 Test(intersect, sphere_front_and_inside)

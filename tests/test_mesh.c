@@ -1,6 +1,7 @@
 /* Mesh processing: smooth normals, Loop subdivision (§7.4), the built-in Cube and square. */
+#include "builtin_mesh.h"
 #include "mesh.h"
-#include "ply.h"
+#include "load/ply.h"
 
 #include <criterion/criterion.h>
 #include <math.h>
@@ -94,10 +95,10 @@ static int by_position(const void *a, const void *b)
 
 Test(mesh, sculpt_gets_smooth_normals)
 {
-    rt_ply_mesh ply;
+    rtp_ply_mesh ply;
     char err[256];
-    cr_assert(rt_ply_read(TRACE "trimeshes/sculpt.ply", &ply, err, sizeof err), "%s", err);
-    rt_mesh_desc m = rt_ply_view(&ply);
+    cr_assert(rtp_ply_read(TRACE "trimeshes/sculpt.ply", &ply, err, sizeof err), "%s", err);
+    rt_mesh_desc m = rtp_ply_view(&ply);
     rt_vec3 *n;
     cr_assert_eq(rt_mesh_smooth_normals(&m, &arena, &n), RT_OK);
     tagged *order = malloc(m.vertex_count * sizeof *order);
@@ -121,7 +122,7 @@ Test(mesh, sculpt_gets_smooth_normals)
     cr_expect_lt(m.vertex_count, m.triangle_count, "%u vertices for %u faces", m.vertex_count, m.triangle_count);
     cr_expect_lt(flat, m.vertex_count / 10, "%u of %u vertex normals are just the face normal", flat, m.vertex_count);
     free(order);
-    rt_ply_free(&ply);
+    rtp_ply_free(&ply);
 }
 
 Test(mesh, smooth_normals_report_a_full_arena_and_bad_indices)
@@ -320,7 +321,7 @@ Test(mesh, subdivision_refuses_bad_arguments)
 
 Test(mesh, cube_matches_the_format)
 {
-    rt_mesh_desc c = rt_mesh_cube();
+    rt_mesh_desc c = rt_builtin_mesh_cube();
     cr_assert_eq(c.vertex_count, 24);
     cr_assert_eq(c.triangle_count, 12);
     cr_assert_not_null(c.normals);
@@ -360,7 +361,7 @@ Test(mesh, cube_matches_the_format)
 
 Test(mesh, square_is_the_unit_plane)
 {
-    rt_mesh_desc s = rt_mesh_square();
+    rt_mesh_desc s = rt_builtin_mesh_square();
     cr_assert_eq(s.vertex_count, 4);
     cr_assert_eq(s.triangle_count, 2);
     double area = 0;

@@ -1,4 +1,4 @@
-/* Monte Carlo rendering (core/rng.c, sampler.c, pathtrace.c, area_light.c, pixel.c):
+/* Monte Carlo rendering (core/rng.c, sample.c, path_trace.c, area_light.c, render_pixel.c):
  * the random numbers, the estimators' expected values (white furnace, caustics rule,
  * single branching, soft shadows), the conventions of format §12.1 (Lambertian area
  * lights, lights seen by camera rays only, the Blinn-Phong lobe of glossy rays),
@@ -9,13 +9,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "cli.h"
+#include "cli/cli.h"
 #include "area_light.h"
-#include "parallel.h"
-#include "pathtrace.h"
+#include "thread/threads.h"
+#include "path_trace.h"
 #include "reference.h"
 #include "render.h"
-#include "scene_build.h"
+#include "load/scene_open.h"
 
 /* ---- Helpers ---- */
 
@@ -110,17 +110,17 @@ static double finite_sum(double e, double w, uint32_t depth)
 }
 
 /* A corpus scene built at size x size (its own settings otherwise). */
-static rt_built_scene open_corpus(const char *name, uint32_t size)
+static rtp_scene open_corpus(const char *name, uint32_t size)
 {
     char path[4096], err[1024];
     snprintf(path, sizeof path, "%s/%s", rt_test_trace_dir(), name);
-    rt_build_options opt;
+    rtp_scene_options opt;
     memset(&opt, 0, sizeof opt);
     opt.max_memory = (size_t)1 << 30;
     opt.depth = opt.aa = -1;
     opt.width = opt.height = size;
-    rt_built_scene b;
-    cr_assert_eq(rt_scene_open(path, &opt, &b, err, sizeof err), 0, "%s", err);
+    rtp_scene b;
+    cr_assert_eq(rtp_scene_open(path, &opt, &b, err, sizeof err), 0, "%s", err);
     return b;
 }
 
@@ -355,7 +355,7 @@ static double floor_under_light(floor_scene f)
                        : material(v3(0.8, 0.8, 0.8), v3(0, 0, 0), v3(0, 0, 0));
     if (f.mirror) mats[0].shininess = RT_C(1e6);
     static rt_mesh_desc mesh;
-    mesh = rt_mesh_square();
+    mesh = rt_builtin_mesh_square();
     static rt_object_desc objs[2];
     objs[0].kind = objs[1].kind = RT_SHAPE_MESH;
     objs[0].world = rt_affine_trs(v3(0, 0, 0), v3(-90, 0, 0), v3(20, 20, 1));
@@ -440,7 +440,7 @@ Test(montecarlo, glossy_rays_sample_the_blinn_phong_lobe)
     m = material(v3(0, 0, 0), v3(1, 1, 1), v3(0, 0, 0));
     m.shininess = RT_C(20.0);
     static rt_mesh_desc mesh;
-    mesh = rt_mesh_square();
+    mesh = rt_builtin_mesh_square();
     static rt_object_desc floor;
     floor.kind = RT_SHAPE_MESH;
     floor.world = rt_affine_trs(v3(0, 0, 0), v3(-90, 0, 0), v3(20, 20, 1));
@@ -513,7 +513,7 @@ static double rms_error(const rt_vec3 *a, const rt_vec3 *b, uint32_t n)
  * pixels: the least-squares slope of log RMS error over log spp is -0.5 +- 0.1. */
 Test(montecarlo, error_falls_as_one_over_sqrt_spp, .timeout = 120)
 {
-    rt_built_scene b = open_corpus("more/cornell_ray.yaml", 8);
+    rtp_scene b = open_corpus("more/cornell_ray.yaml", 8);
     b.scene.camera.trace.monte_carlo = 1;
     b.scene.camera.trace.samples_per_pixel_index = 6;
     rt_vec3 *ref = render_colors(&b.scene);
@@ -529,7 +529,7 @@ Test(montecarlo, error_falls_as_one_over_sqrt_spp, .timeout = 120)
     double slope = (4 * sxy - sx * sy) / (4 * sxx - sx * sx);
     cr_expect(fabs(slope + 0.5) < 0.1, "slope %.3f", slope);
     free(ref);
-    rt_scene_close(&b);
+    rtp_scene_close(&b);
 }
 
 /* No sample is brighter than a path can carry, except a camera ray that ends on a
@@ -550,7 +550,7 @@ static bool is_a_lights_emission(const rt_scene *s, rt_vec3 c)
 
 Test(montecarlo, no_sample_brighter_than_the_bound)
 {
-    rt_built_scene b = open_corpus("more/cornell_ray.yaml", 16);
+    rtp_scene b = open_corpus("more/cornell_ray.yaml", 16);
     const rt_scene *s = &b.scene;
     b.scene.camera.trace.samples_per_pixel_index = 2;
     double bound[3], brightest[3] = {0, 0, 0};
@@ -595,7 +595,7 @@ Test(montecarlo, no_sample_brighter_than_the_bound)
     }
     fprintf(stderr, "montecarlo: cornell 16x16: %u of 4096 samples end on a light\n", on_light);
     cr_expect(on_light > 0, "no camera ray saw the lights' squares");
-    rt_scene_close(&b);
+    rtp_scene_close(&b);
 }
 
 /* ---- Sample count types ---- */
@@ -711,7 +711,7 @@ Test(montecarlo, thin_lens_rays_meet_in_the_focal_plane)
     rt_vec3 focus = rt_v3_madd(pin.origin, pin.direction, t);
     for (uint32_t k = 0; k < 16; k++) {
         rt_sampler s = {rt_rng_pixel_key(0, 0), k, 2};
-        rt_ray r = rt_lens_ray(cam, x, y, rt_sample_2d(&s, 0, RT_PURPOSE_LENS));
+        rt_ray r = rt_camera_lens_ray(cam, x, y, rt_sample_2d(&s, 0, RT_PURPOSE_LENS));
         rt_vec3 off = rt_v3_sub(r.origin, cam->eye);
         cr_expect(rt_to_double(rt_v3_length(off)) <= 0.3 + EXACT, "origin off the lens");
         cr_expect(fabs(rt_to_double(rt_v3_dot(off, cam->forward))) < EXACT, "lens not across the view");
@@ -721,7 +721,7 @@ Test(montecarlo, thin_lens_rays_meet_in_the_focal_plane)
     }
     b.scene.camera.trace.aperture_size = RT_ZERO;
     rt_vec2 lens = {RT_C(0.7), RT_C(0.2)};
-    rt_ray same = rt_lens_ray(&b.scene.camera, x, y, lens);
+    rt_ray same = rt_camera_lens_ray(&b.scene.camera, x, y, lens);
     cr_expect(memcmp(&same, &pin, sizeof pin) == 0, "no aperture, yet not the pinhole ray");
     free(b.memory);
 }
@@ -731,7 +731,7 @@ Test(montecarlo, thin_lens_rays_meet_in_the_focal_plane)
 /* The same bytes whatever the tile shape and order, and on 1 or 2 threads. */
 Test(montecarlo, image_does_not_depend_on_tiles_or_threads)
 {
-    rt_built_scene b = open_corpus("more/chess_mcpt.yaml", 24);
+    rtp_scene b = open_corpus("more/chess_mcpt.yaml", 24);
     b.scene.camera.trace.samples_per_pixel_index = 1;
     rt_tracer tr = {&b.scene, true, NULL};
     size_t bytes = 24 * 24 * 3;
@@ -743,14 +743,14 @@ Test(montecarlo, image_does_not_depend_on_tiles_or_threads)
             uint32_t x0 = tx * 5, y0 = ty * 7, x1 = x0 + 5 < 24 ? x0 + 5 : 24, y1 = y0 + 7 < 24 ? y0 + 7 : 24;
             rt_render_region(&tr, x0, y0, x1, y1, tiles);
         }
-    rt_parallel_options p1 = {1, 8, false, NULL}, p2 = {2, 3, false, NULL};
-    cr_assert(rt_render_parallel(&tr, &p1, one));
-    cr_assert(rt_render_parallel(&tr, &p2, two));
+    rtp_threads_options p1 = {1, 8, false, NULL}, p2 = {2, 3, false, NULL};
+    cr_assert(rtp_threads_render(&tr, &p1, one));
+    cr_assert(rtp_threads_render(&tr, &p2, two));
     cr_expect(memcmp(rows, tiles, bytes) == 0, "tile order changed the image");
     cr_expect(memcmp(rows, one, bytes) == 0, "1 thread changed the image");
     cr_expect(memcmp(rows, two, bytes) == 0, "2 threads changed the image");
     free(rows), free(tiles), free(one), free(two);
-    rt_scene_close(&b);
+    rtp_scene_close(&b);
 }
 
 /* ---- Command line ---- */
@@ -762,8 +762,8 @@ Test(montecarlo, spp_option_takes_powers_of_four)
     for (int k = 0; k < 4; k++) {
         char *argv[2] = {"--spp", (char *)good[k][0]};
         int i = 0;
-        rt_build_options o = rt_default_build_options();
-        cr_expect_eq(rt_parse_scene_option("render", 2, argv, &i, &o), 1);
+        rtp_scene_options o = rtp_scene_default_options();
+        cr_expect_eq(rtp_cli_scene_option("render", 2, argv, &i, &o), 1);
         cr_expect_eq(o.aa, atoi(good[k][1]), "--spp %s", good[k][0]);
         cr_expect_eq(i, 1);
     }
@@ -771,7 +771,7 @@ Test(montecarlo, spp_option_takes_powers_of_four)
     for (int k = 0; k < 6; k++) {
         char *argv[2] = {"--spp", (char *)bad[k]};
         int i = 0;
-        rt_build_options o = rt_default_build_options();
-        cr_expect(rt_parse_scene_option("render", 2, argv, &i, &o) < 0, "--spp %s accepted", bad[k]);
+        rtp_scene_options o = rtp_scene_default_options();
+        cr_expect(rtp_cli_scene_option("render", 2, argv, &i, &o) < 0, "--spp %s accepted", bad[k]);
     }
 }

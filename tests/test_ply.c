@@ -1,6 +1,6 @@
 /* PLY reader: the corpus meshes, the three encodings of one mesh, header variants,
  * fan triangulation, degenerate triangles, and a catalogue of hostile files. */
-#include "ply.h"
+#include "load/ply.h"
 #include "tmpdir.h"
 
 #include <criterion/criterion.h>
@@ -112,11 +112,11 @@ static const char *write_mesh(const char *name, const char *format, const prop *
     return path;
 }
 
-static rt_ply_mesh load(const char *path)
+static rtp_ply_mesh load(const char *path)
 {
-    rt_ply_mesh m;
+    rtp_ply_mesh m;
     char err[512];
-    cr_assert(rt_ply_read(path, &m, err, sizeof err), "%s", err);
+    cr_assert(rtp_ply_read(path, &m, err, sizeof err), "%s", err);
     return m;
 }
 
@@ -150,16 +150,16 @@ Test(ply, every_corpus_mesh_loads_with_its_counts)
         {TRACE "trimeshes/table2.ply", 800 /* of 4320 */, 1440 - 240, true, false},
     };
     for (size_t i = 0; i < sizeof corpus / sizeof corpus[0]; i++) {
-        rt_ply_mesh m = load(corpus[i].path);
+        rtp_ply_mesh m = load(corpus[i].path);
         cr_expect_eq(m.vertex_count, corpus[i].vertices, "%s", corpus[i].path);
         cr_expect_eq(m.triangle_count, corpus[i].triangles, "%s", corpus[i].path);
         cr_expect_eq(m.normals != NULL, corpus[i].normals, "%s", corpus[i].path);
         cr_expect_eq(m.uvs != NULL, corpus[i].uvs, "%s", corpus[i].path);
         for (uint32_t t = 0; t < 3 * m.triangle_count; t++) cr_assert_lt(m.indices[t], m.vertex_count);
-        rt_mesh_desc d = rt_ply_view(&m);
+        rt_mesh_desc d = rtp_ply_view(&m);
         cr_expect_eq(d.positions, m.positions);
         cr_expect_eq(d.triangle_count, m.triangle_count);
-        rt_ply_free(&m);
+        rtp_ply_free(&m);
         cr_expect_null(m.positions);
     }
 }
@@ -167,7 +167,7 @@ Test(ply, every_corpus_mesh_loads_with_its_counts)
 Test(ply, ascii_floats_are_rounded_to_the_declared_float)
 {
     /* poly-sphere.ply line 2 of the body: "1.28465e-08 0.5 1.76816e-08 ... 0.1 0". */
-    rt_ply_mesh m = load(TRACE "simple/poly-sphere.ply");
+    rtp_ply_mesh m = load(TRACE "simple/poly-sphere.ply");
     cr_expect_eq(m.positions[1].x, (double)1.28465e-08f);
     cr_expect_eq(m.positions[1].y, 0.5);
     cr_expect_eq(m.normals[1].y, 1.0);
@@ -175,7 +175,7 @@ Test(ply, ascii_floats_are_rounded_to_the_declared_float)
     cr_expect_neq(m.uvs[1].u, 0.1);
     cr_expect_eq(m.indices[0], 1); /* first face: "3 1 11 12" */
     cr_expect_eq(m.indices[2], 12);
-    rt_ply_free(&m);
+    rtp_ply_free(&m);
 }
 
 /* ---- encodings and header variants ---- */
@@ -183,7 +183,7 @@ Test(ply, ascii_floats_are_rounded_to_the_declared_float)
 Test(ply, ascii_little_and_big_endian_give_identical_arrays)
 {
     static const char *const formats[] = {"ascii", "binary_little_endian", "binary_big_endian"};
-    rt_ply_mesh m[3];
+    rtp_ply_mesh m[3];
     for (int i = 0; i < 3; i++)
         m[i] = load(write_mesh(formats[i], formats[i], full_props, 8, full_values, 6, "uchar", "int", full_faces, 3));
     cr_assert_eq(m[0].vertex_count, 6);
@@ -200,7 +200,7 @@ Test(ply, ascii_little_and_big_endian_give_identical_arrays)
     }
     cr_expect_eq(m[0].positions[5].z, (double)2.7f);
     cr_expect_eq(m[2].uvs[3].v, 1.5);
-    for (int i = 0; i < 3; i++) rt_ply_free(&m[i]);
+    for (int i = 0; i < 3; i++) rtp_ply_free(&m[i]);
 }
 
 Test(ply, polygons_are_fan_triangulated)
@@ -208,13 +208,13 @@ Test(ply, polygons_are_fan_triangulated)
     static const char text[] = "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\n"
                                "property float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n"
                                "0 0 0\n1 0 0\n2 1 0\n1 2 0\n0 1 0\n3 3 1\n5 0 1 2 3 4\n4 0 1 5 4\n";
-    rt_ply_mesh m = load(put_text("fan.ply", text));
+    rtp_ply_mesh m = load(put_text("fan.ply", text));
     static const uint32_t fan[] = {0, 1, 2, 0, 2, 3, 0, 3, 4, 0, 1, 5, 0, 5, 4};
     cr_assert_eq(m.triangle_count, 5);
     cr_expect_arr_eq(m.indices, fan, sizeof fan);
     cr_expect_null(m.normals);
     cr_expect_null(m.uvs);
-    rt_ply_free(&m);
+    rtp_ply_free(&m);
 }
 
 Test(ply, every_scalar_type_and_alias_in_both_byte_orders)
@@ -231,7 +231,7 @@ Test(ply, every_scalar_type_and_alias_in_both_byte_orders)
     for (int i = 0; i < 3; i++) {
         char name[32];
         snprintf(name, sizeof name, "types%d.ply", i);
-        rt_ply_mesh m = load(write_mesh(name, formats[i], props, 12, values, 3, "int", index_types[i], faces, 1));
+        rtp_ply_mesh m = load(write_mesh(name, formats[i], props, 12, values, 3, "int", index_types[i], faces, 1));
         cr_expect_eq(m.positions[0].x, -128.0, "%s", formats[i]);
         cr_expect_eq(m.positions[0].y, -32768.0, "%s", formats[i]);
         cr_expect_eq(m.positions[0].z, 0.1, "%s", formats[i]);
@@ -244,7 +244,7 @@ Test(ply, every_scalar_type_and_alias_in_both_byte_orders)
         cr_expect_eq(m.uvs[0].v, 127.0, "%s", formats[i]);
         cr_expect_eq(m.uvs[1].v, -128.0, "%s", formats[i]);
         cr_expect_eq(m.triangle_count, 1);
-        rt_ply_free(&m);
+        rtp_ply_free(&m);
     }
 }
 
@@ -255,18 +255,18 @@ Test(ply, uv_aliases_and_partial_sets)
     static const int faces[] = {3, 0, 1, 2};
     for (int i = 0; i < 4; i++) {
         prop p[] = {{"float", "x"}, {"float", "y"}, {"float", "z"}, {"float", pairs[i][0]}, {"float", pairs[i][1]}};
-        rt_ply_mesh m = load(write_mesh("uv.ply", "binary_little_endian", p, 5, values, 3, "uchar", "uint", faces, 1));
+        rtp_ply_mesh m = load(write_mesh("uv.ply", "binary_little_endian", p, 5, values, 3, "uchar", "uint", faces, 1));
         cr_assert_not_null(m.uvs, "%s %s", pairs[i][0], pairs[i][1]);
         cr_expect_eq(m.uvs[0].u, 0.25);
         cr_expect_eq(m.uvs[1].v, 1.0);
-        rt_ply_free(&m);
+        rtp_ply_free(&m);
     }
     /* u without v, nx without nz: ignored rather than half-filled. */
     prop p[] = {{"float", "x"}, {"float", "y"}, {"float", "z"}, {"float", "u"}, {"float", "nx"}};
-    rt_ply_mesh m = load(write_mesh("uv.ply", "ascii", p, 5, values, 3, "uchar", "uint", faces, 1));
+    rtp_ply_mesh m = load(write_mesh("uv.ply", "ascii", p, 5, values, 3, "uchar", "uint", faces, 1));
     cr_expect_null(m.uvs);
     cr_expect_null(m.normals);
-    rt_ply_free(&m);
+    rtp_ply_free(&m);
 }
 
 Test(ply, element_order_unknown_elements_lists_comments_and_crlf)
@@ -283,7 +283,7 @@ Test(ply, element_order_unknown_elements_lists_comments_and_crlf)
         "0 3 2 1 3 0\r\n"
         "3 -1 -2 -3 0.5\r\n"
         "0 0 0 255 0\r\n1 2 9 9 1 0 0\r\n0 0 0 255 1\r\n  2   1   1 1 1 1 \t\r\n";
-    rt_ply_mesh m = load(put_text("order.ply", text));
+    rtp_ply_mesh m = load(put_text("order.ply", text));
     cr_assert_eq(m.vertex_count, 4);
     cr_assert_eq(m.triangle_count, 2);
     static const uint32_t tris[] = {0, 1, 2, 2, 1, 3};
@@ -293,7 +293,7 @@ Test(ply, element_order_unknown_elements_lists_comments_and_crlf)
     cr_expect_eq(m.positions[2].y, 1.0);
     cr_expect_eq(m.positions[3].z, 2.0);
     cr_expect_eq(m.positions[3].x, 1.0);
-    rt_ply_free(&m);
+    rtp_ply_free(&m);
 }
 
 Test(ply, degenerate_triangles_are_dropped)
@@ -303,21 +303,21 @@ Test(ply, degenerate_triangles_are_dropped)
                                "end_header\n0 0 0\n1 0 0\n0 1 0\n2 0 0\n0 0 0\n"
                                "3 0 1 2\n3 0 0 2\n3 0 1 3\n3 0 4 1\n4 2 1 0 0\n";
     /* kept: (0,1,2) and (2,1,0) of the quad; dropped: repeated index, collinear, coincident. */
-    rt_ply_mesh m = load(put_text("degenerate.ply", text));
+    rtp_ply_mesh m = load(put_text("degenerate.ply", text));
     static const uint32_t kept[] = {0, 1, 2, 2, 1, 0};
     cr_assert_eq(m.triangle_count, 2);
     cr_expect_arr_eq(m.indices, kept, sizeof kept);
-    rt_ply_free(&m);
+    rtp_ply_free(&m);
 }
 
 /* ---- hostile files ---- */
 
 static void expect_error(const char *path, const char *needle)
 {
-    rt_ply_mesh m;
+    rtp_ply_mesh m;
     char err[512];
     memset(&m, 0xab, sizeof m);
-    cr_assert_not(rt_ply_read(path, &m, err, sizeof err), "accepted, expected: %s", needle);
+    cr_assert_not(rtp_ply_read(path, &m, err, sizeof err), "accepted, expected: %s", needle);
     cr_expect_null(m.positions);
     cr_expect_null(m.indices);
     cr_expect_null(strchr(err, '\n'), "not one line: %s", err);
@@ -443,10 +443,10 @@ static const char *at_byte(const char *header, size_t at, const char *rest)
 Test(ply, hostile_binary_bodies)
 {
     static const uint8_t tri[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 3, 0, 1, 2};
-    rt_ply_mesh m = load(put_binary("ok.ply", LE BXYZ BFACE, tri, sizeof tri));
+    rtp_ply_mesh m = load(put_binary("ok.ply", LE BXYZ BFACE, tri, sizeof tri));
     cr_expect_eq(m.triangle_count, 1);
     cr_expect_eq(m.positions[1].x, 1.0);
-    rt_ply_free(&m);
+    rtp_ply_free(&m);
     expect_error(put_binary("short.ply", LE BXYZ BFACE, tri, sizeof tri - 1),
                  at_byte(LE BXYZ BFACE, 12, "face 0 of 1: unexpected end of file"));
     static const uint8_t extra[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 3, 0, 1, 2, 9, 9};
@@ -481,15 +481,15 @@ Test(ply, hostile_binary_bodies)
 
 Test(ply, files_that_cannot_be_read)
 {
-    rt_ply_mesh m;
+    rtp_ply_mesh m;
     char err[256];
-    cr_assert_not(rt_ply_read("/nonexistent/mesh.ply", &m, err, sizeof err));
+    cr_assert_not(rtp_ply_read("/nonexistent/mesh.ply", &m, err, sizeof err));
     cr_expect_str_eq(err, "/nonexistent/mesh.ply: cannot open: No such file or directory");
-    cr_assert_not(rt_ply_read(dir, &m, err, sizeof err));
+    cr_assert_not(rtp_ply_read(dir, &m, err, sizeof err));
     cr_expect_not_null(strstr(err, "is a directory"), "%s", err);
     /* A tiny error buffer is filled, truncated, and terminated. */
     char small[8];
-    cr_assert_not(rt_ply_read("/nonexistent/mesh.ply", &m, small, sizeof small));
+    cr_assert_not(rtp_ply_read("/nonexistent/mesh.ply", &m, small, sizeof small));
     cr_expect_str_eq(small, "/nonexi");
 }
 
@@ -511,7 +511,7 @@ Test(ply, identical_vertices_are_joined)
           "0 0 0 1 0 0\n"                              /* same position, other normal: kept */
           "3 0 1 2\n3 3 4 5\n", f);
     fclose(f);
-    rt_ply_mesh m = load(path);
+    rtp_ply_mesh m = load(path);
     cr_assert_eq(m.vertex_count, 5);
     cr_assert_eq(m.triangle_count, 2);
     uint32_t want[6] = {0, 1, 2, 1, 3, 2};
@@ -519,6 +519,6 @@ Test(ply, identical_vertices_are_joined)
     cr_assert_eq(m.positions[3].x, 1);
     cr_assert_eq(m.positions[3].y, 1);
     cr_assert_eq(m.normals[4].x, 1);
-    rt_ply_free(&m);
+    rtp_ply_free(&m);
     tmpdir_remove(scratch);
 }

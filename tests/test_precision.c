@@ -69,7 +69,7 @@ Test(precision, far_large_triangle_gets_its_distance)
     rt_vec3 dir = rt_v3_normalize(v3d(-0.7, -0.4, -0.59));
     long double dist = 9000;
     rt_ray ray = {rt_v3_madd(centroid, dir, rt_from_double(-9000.0)), dir, RT_HIT_EPSILON, RT_REAL_MAX};
-    rt_ray_setup rs = rt_ray_prepare(ray);
+    rt_ray_setup rs = rt_intersect_prepare(ray);
     rt_prim_hit h;
     cr_assert(rt_intersect_triangle(&rs, a, b, c, &h));
     cr_assert(fabsl(rt_to_double(h.t) - dist) <= 1e-3L, "t = %.17g, want 9000", rt_to_double(h.t));

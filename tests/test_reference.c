@@ -9,7 +9,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
-#include "compare.h"
+#include "image/image_compare.h"
 #include "reference.h"
 
 /* Floors for cornell_ray, a little under what both builds measure (docs/montecarlo.md). */
@@ -48,23 +48,23 @@ ParameterizedTest(reference_case *c, reference, matches_solution)
     char scene[4096], solution[4096], err[1024];
     snprintf(scene, sizeof scene, "%s/%s.yaml", rt_test_trace_dir(), c->scene);
     snprintf(solution, sizeof solution, "%s/solution/%s", rt_test_trace_dir(), c->solution);
-    rt_image ours, theirs;
+    rtp_image ours, theirs;
     cr_assert(rt_test_render(scene, 1, true, &ours, err, sizeof err), "%s", err);
-    cr_assert(rt_image_read(solution, &theirs, err, sizeof err), "%s", err);
-    rt_image_metrics m;
-    cr_assert(rt_image_compare(&ours, &theirs, &m), "%s: size %ux%u vs solution %ux%u", c->scene, ours.width,
+    cr_assert(rtp_image_read(solution, &theirs, err, sizeof err), "%s", err);
+    rtp_image_metrics m;
+    cr_assert(rtp_image_compare(&ours, &theirs, &m), "%s: size %ux%u vs solution %ux%u", c->scene, ours.width,
               ours.height, theirs.width, theirs.height);
     fprintf(stderr, "reference: %-30s PSNR %7.2f dB  within 1: %8.4f%%  within 2: %8.4f%%  max diff %3u\n",
             c->scene, m.psnr, m.within1_pct, m.within2_pct, m.max_diff);
     cr_expect(m.psnr >= 40.0, "%s: PSNR %.2f dB < 40 dB", c->scene, m.psnr);
     cr_expect(m.within2_pct >= 99.0, "%s: only %.3f%% of channels within 2 levels", c->scene, m.within2_pct);
-    rt_image_free(&ours);
-    rt_image_free(&theirs);
+    rtp_image_free(&ours);
+    rtp_image_free(&theirs);
 }
 
 /* PSNR of the 4x4 box averages of a and b (sizes multiples of 4), as tools/fidelity
  * computes it: the mean of each 4x4 block per channel, unrounded. */
-static double box4_psnr(const rt_image *a, const rt_image *b)
+static double box4_psnr(const rtp_image *a, const rtp_image *b)
 {
     uint32_t w = a->width / 4, h = a->height / 4;
     double sq = 0;
@@ -92,11 +92,11 @@ Test(reference, monte_carlo_cornell_matches_solution_statistically, .timeout = 9
     char scene[4096], solution[4096], err[1024];
     snprintf(scene, sizeof scene, "%s/more/cornell_ray.yaml", rt_test_trace_dir());
     snprintf(solution, sizeof solution, "%s/solution/cornell_ray_5.png", rt_test_trace_dir());
-    rt_image ours, theirs;
+    rtp_image ours, theirs;
     cr_assert(rt_test_render(scene, 2, true, &ours, err, sizeof err), "%s", err);
-    cr_assert(rt_image_read(solution, &theirs, err, sizeof err), "%s", err);
-    rt_image_metrics m;
-    cr_assert(rt_image_compare(&ours, &theirs, &m), "size %ux%u vs solution %ux%u", ours.width, ours.height,
+    cr_assert(rtp_image_read(solution, &theirs, err, sizeof err), "%s", err);
+    rtp_image_metrics m;
+    cr_assert(rtp_image_compare(&ours, &theirs, &m), "size %ux%u vs solution %ux%u", ours.width, ours.height,
               theirs.width, theirs.height);
     double averaged = box4_psnr(&ours, &theirs);
     fprintf(stderr, "reference: %-30s PSNR %7.2f dB  4x4-averaged %7.2f dB (Monte Carlo)\n", "more/cornell_ray", m.psnr,
@@ -104,8 +104,8 @@ Test(reference, monte_carlo_cornell_matches_solution_statistically, .timeout = 9
     cr_expect(m.psnr >= CORNELL_FULL_FLOOR, "PSNR %.2f dB < %.1f dB", m.psnr, CORNELL_FULL_FLOOR);
     cr_expect(averaged >= CORNELL_AVERAGED_FLOOR, "4x4-averaged PSNR %.2f dB < %.1f dB", averaged,
               CORNELL_AVERAGED_FLOOR);
-    rt_image_free(&ours);
-    rt_image_free(&theirs);
+    rtp_image_free(&ours);
+    rtp_image_free(&theirs);
 }
 
 /* The two solution scenes whose assets the corpus lacks fail with a clear message. */
@@ -116,7 +116,7 @@ Test(reference, missing_assets_are_named)
     for (int i = 0; i < 2; i++) {
         char scene[4096], err[1024] = "";
         snprintf(scene, sizeof scene, "%s/%s.yaml", rt_test_trace_dir(), scenes[i]);
-        rt_image img;
+        rtp_image img;
         cr_assert_not(rt_test_render(scene, 1, true, &img, err, sizeof err), "%s rendered", scenes[i]);
         cr_expect(strstr(err, files[i]) != NULL, "message for %s does not name %s: %s", scenes[i], files[i], err);
     }

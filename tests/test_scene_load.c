@@ -1,6 +1,6 @@
 /* The YAML scene loader: facts of the corpus scenes, the missing-asset errors, and
  * small hand-written scenes for defaults, quirks and malformed input. */
-#include "scene_load.h"
+#include "load/scene_load.h"
 #include "reference.h"
 #include "tmpdir.h"
 
@@ -12,8 +12,8 @@
 
 static char dir[64];
 static char scene_path[256];
-static char err[RT_ERR_SIZE];
-static rt_loaded_scene scene;
+static char err[RTP_ERR_SIZE];
+static rtp_loaded_scene scene;
 
 static void setup(void)
 {
@@ -22,7 +22,7 @@ static void setup(void)
 
 static void teardown(void)
 {
-    rt_scene_unload(&scene);
+    rtp_scene_unload(&scene);
     tmpdir_remove(dir);
 }
 
@@ -48,25 +48,25 @@ static const char *put_file(const char *rel, const char *text)
 /* Writes a scene to dir/rel and loads it into `scene`, the message (if any) in err. */
 static bool load_as(const char *rel, const char *yaml, const char *assets_root)
 {
-    rt_scene_unload(&scene);
+    rtp_scene_unload(&scene);
     snprintf(scene_path, sizeof scene_path, "%s", put_file(rel, yaml));
-    return rt_scene_load(scene_path, assets_root, &scene, err, sizeof err);
+    return rtp_scene_load(scene_path, assets_root, &scene, err, sizeof err);
 }
 
 static bool load(const char *yaml) { return load_as("scene.yaml", yaml, NULL); }
 
 static bool load_corpus(const char *rel)
 {
-    rt_scene_unload(&scene);
+    rtp_scene_unload(&scene);
     snprintf(scene_path, sizeof scene_path, "%s/%s", rt_test_trace_dir(), rel);
-    return rt_scene_load(scene_path, NULL, &scene, err, sizeof err);
+    return rtp_scene_load(scene_path, NULL, &scene, err, sizeof err);
 }
 
 /* Asserts that loading failed with exactly "<scene>:<line>:<col>: <message>" and left nothing behind. */
 static void expect_error(int line, int col, const char *message)
 {
-    static const rt_loaded_scene empty;
-    char want[RT_ERR_SIZE];
+    static const rtp_loaded_scene empty;
+    char want[RTP_ERR_SIZE];
     snprintf(want, sizeof want, "%s:%d:%d: %s", scene_path, line, col, message);
     cr_assert_str_eq(err, want);
     cr_assert(memcmp(&scene, &empty, sizeof scene) == 0, "a failed load must leave the scene empty");
@@ -732,7 +732,7 @@ Test(scene_load, odd_documents)
                       "this node is reused through an alias; aliases are not supported");
 
     snprintf(scene_path, sizeof scene_path, "%s/absent.yaml", dir);
-    cr_assert_not(rt_scene_load(scene_path, NULL, &scene, err, sizeof err));
+    cr_assert_not(rtp_scene_load(scene_path, NULL, &scene, err, sizeof err));
     char want[512];
     snprintf(want, sizeof want, "%s: cannot open: No such file or directory", scene_path);
     cr_expect_str_eq(err, want);

@@ -78,7 +78,7 @@ Test(sha256, render_hash_is_sha256_of_the_ppm_file)
     const uint8_t rgb[6] = {0xff, 0x00, 0x10, 0x20, 0x80, 0xfe};
     uint8_t digest[32];
     char got[65];
-    rt_render_hash(rgb, 2, 1, digest);
+    rt_sha256_ppm(rgb, 2, 1, digest);
     hex(digest, got);
     cr_assert_str_eq(got, "0c02c8cdf5c3b45ca48c69a7fd2740ba5164d2a9d9d5976f1623749bb17ea2a3");
 }
@@ -97,6 +97,6 @@ Test(sha256, render_hash_header_for_large_sizes)
     rt_sha256_update(&h, header, (size_t)len);
     rt_sha256_update(&h, rgb, sizeof rgb);
     rt_sha256_final(&h, expected);
-    rt_render_hash(rgb, 1234, 10, digest);
+    rt_sha256_ppm(rgb, 1234, 10, digest);
     cr_assert_arr_eq(digest, expected, 32);
 }

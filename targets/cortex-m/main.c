@@ -59,7 +59,7 @@ int main(void)
     rt_render_region(&tracer, 0, 0, w, h, rgb);
     uint32_t elapsed = rt_board_centiseconds() - start;
     uint8_t digest[32];
-    rt_render_hash(rgb, w, h, digest);
+    rt_sha256_ppm(rgb, w, h, digest);
     char hex[66];
     for (int i = 0; i < 32; i++) {
         hex[2 * i] = "0123456789abcdef"[digest[i] >> 4];

@@ -1,0 +1,70 @@
+/* Camera rays: pinhole, thin lens and orthographic, and the sub-pixel grid; see camera.h. */
+#include "camera.h"
+#include "sample.h"
+
+/* P - eye for the perspective camera's image-plane point (x, y): the image plane sits
+ * Focus Distance ahead (format §8.2), which is also the plane in focus (§8.4). */
+static rt_vec3 focal_offset(const rt_camera *cam, rt_real sx, rt_real sy)
+{
+    rt_real focus = cam->trace.focus_distance > RT_ZERO ? cam->trace.focus_distance : RT_ONE;
+    rt_vec3 f = rt_v3_scale(cam->forward, focus);
+    rt_vec3 u = rt_v3_scale(cam->up, rt_mul(focus, cam->tan_half_fov));
+    rt_vec3 r = rt_v3_scale(cam->right, rt_mul(rt_mul(focus, cam->tan_half_fov), cam->aspect));
+    return rt_v3_add(rt_v3_add(f, rt_v3_scale(r, sx)), rt_v3_scale(u, sy));
+}
+
+rt_ray rt_camera_ray(const rt_camera *cam, rt_real x, rt_real y)
+{
+    rt_real sx = rt_sub(rt_mul(RT_C(2.0), x), RT_ONE), sy = rt_sub(rt_mul(RT_C(2.0), y), RT_ONE);
+    rt_ray ray;
+    ray.t_min = RT_HIT_EPSILON;
+    ray.t_max = RT_REAL_MAX;
+    if (!cam->perspective) {
+        /* Parallel rays over a view Orthographic View Width wide (format §8.3). */
+        rt_real half_w = rt_mul(cam->ortho_width, RT_C(0.5));
+        rt_real half_h = rt_div(half_w, cam->aspect);
+        ray.origin = rt_v3_add(cam->eye, rt_v3_add(rt_v3_scale(cam->right, rt_mul(sx, half_w)),
+                                                   rt_v3_scale(cam->up, rt_mul(sy, half_h))));
+        ray.direction = cam->forward;
+        return ray;
+    }
+    /* Without a lens the direction does not depend on Focus Distance (up to rounding). */
+    ray.origin = cam->eye;
+    ray.direction = rt_v3_normalize(focal_offset(cam, sx, sy));
+    return ray;
+}
+
+rt_ray rt_camera_lens_ray(const rt_camera *cam, rt_real x, rt_real y, rt_vec2 lens)
+{
+    if (!cam->perspective || !(cam->trace.aperture_size > RT_ZERO)) return rt_camera_ray(cam, x, y);
+    rt_real sx = rt_sub(rt_mul(RT_C(2.0), x), RT_ONE), sy = rt_sub(rt_mul(RT_C(2.0), y), RT_ONE);
+    rt_vec2 d = rt_sample_disc(lens);
+    rt_real radius = rt_mul(cam->trace.aperture_size, RT_C(0.5));
+    rt_vec3 shift = rt_v3_add(rt_v3_scale(cam->right, rt_mul(d.u, radius)), rt_v3_scale(cam->up, rt_mul(d.v, radius)));
+    /* From a point of the lens towards the same point of the plane in focus. */
+    rt_ray ray = {rt_v3_add(cam->eye, shift), rt_v3_normalize(rt_v3_sub(focal_offset(cam, sx, sy), shift)),
+                  RT_HIT_EPSILON, RT_REAL_MAX};
+    return ray;
+}
+
+uint32_t rt_camera_samples(const rt_camera *cam)
+{
+    return 1u << (2 * cam->trace.samples_per_pixel_index);
+}
+
+rt_ray rt_camera_grid_ray(const rt_camera *cam, uint32_t column, uint32_t row, uint32_t a, uint32_t b, uint32_t side)
+{
+    uint32_t j = cam->height - 1 - row; /* buffer rows count from the bottom */
+    rt_real s = rt_from_int(side);
+    rt_real x = rt_div(rt_add(rt_from_int(column), rt_div(rt_add(rt_from_int(a), RT_C(0.5)), s)), rt_from_int(cam->width));
+    rt_real y = rt_div(rt_add(rt_from_int(j), rt_div(rt_add(rt_from_int(b), RT_C(0.5)), s)), rt_from_int(cam->height));
+    return rt_camera_ray(cam, x, y);
+}
+
+rt_ray rt_camera_pixel_ray(const rt_camera *cam, uint32_t column, uint32_t row, uint32_t sample)
+{
+    /* 4^n samples on a regular 2^n x 2^n grid of sub-pixel centres (format §11.1),
+     * numbered row by row from the bottom left. */
+    uint32_t side = 1u << cam->trace.samples_per_pixel_index;
+    return rt_camera_grid_ray(cam, column, row, sample % side, sample / side, side);
+}

@@ -1,0 +1,22 @@
+/* Camera rays (format §8): where each pixel and sample looks from and towards. */
+#ifndef RT_CAMERA_H
+#define RT_CAMERA_H
+
+#include "ray.h"
+#include "scene.h"
+
+/* The camera ray through image point (x, y) in [0,1]^2, y = 0 at the bottom (format §8). */
+rt_ray rt_camera_ray(const rt_camera *cam, rt_real x, rt_real y);
+/* The same through the point `lens` ([0,1)^2, mapped to the disc of diameter Aperture
+ * Size) of a thin lens focused at Focus Distance (format §8.4); a pinhole without aperture. */
+rt_ray rt_camera_lens_ray(const rt_camera *cam, rt_real x, rt_real y, rt_vec2 lens);
+/* The ray through the centre of cell (a, b) of a side x side grid over pixel (column, row),
+ * row 0 = top, cell (0, 0) at the pixel's bottom left. */
+rt_ray rt_camera_grid_ray(const rt_camera *cam, uint32_t column, uint32_t row, uint32_t a, uint32_t b, uint32_t side);
+
+/* 4^(Samples Per Pixel) */
+uint32_t rt_camera_samples(const rt_camera *cam);
+/* The camera ray of sample `sample` (0 .. samples-1) of pixel (column, row), row 0 = top. */
+rt_ray rt_camera_pixel_ray(const rt_camera *cam, uint32_t column, uint32_t row, uint32_t sample);
+
+#endif

@@ -1,0 +1,204 @@
+/* Scene queries: nearest and any hit along a ray, with the tie rule of scene_query.h. */
+#include "scene_query.h"
+#include "bvh_slab.h"
+
+static bool quadric_intersect(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs, rt_prim_hit *hit);
+
+/* Inline in the BVH's leaf loop, where a triangle test is most of the work; kx, ky, kz
+ * are rs's axis permutation (see rt_intersect_triangle_axes). */
+__attribute__((always_inline)) static inline bool prim_intersect(const rt_scene *scene, uint32_t prim,
+                                                                 const rt_ray_setup *rs, rt_prim_hit *hit, int kx,
+                                                                 int ky, int kz)
+{
+    if (prim >= scene->triangle_count) return quadric_intersect(scene, prim, rs, hit);
+    const rt_triangle *tri = &scene->triangles[prim];
+    return rt_intersect_triangle_axes(rs, scene->positions[tri->v[0]], scene->positions[tri->v[1]],
+                                      scene->positions[tri->v[2]], hit, kx, ky, kz);
+}
+
+bool rt_scene_prim_intersect(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs, rt_prim_hit *hit)
+{
+    return prim_intersect(scene, prim, rs, hit, rs->kx, rs->ky, rs->kz);
+}
+
+static bool quadric_intersect(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs, rt_prim_hit *hit)
+{
+    const rt_object *obj = &scene->objects[scene->quadric_objects[prim - scene->triangle_count]];
+    rt_vec3 o = rt_affine_point(&obj->to_object, rs->ray.origin);
+    rt_vec3 d = rt_affine_vector(&obj->to_object, rs->ray.direction);
+    /* Solve with a unit object-space direction and scale t back: the short direction of a
+     * scaled-up object would leave Q32.32 only a few bits in d.d. */
+    rt_real len = rt_v3_length(d);
+    if (!(len > RT_ZERO)) return false;
+    rt_vec3 unit = rt_v3_scale(d, rt_div(RT_ONE, len));
+    rt_real t_min = rt_mul(rs->ray.t_min, len), t_max = rt_mul(rs->ray.t_max, len);
+    bool found = obj->kind == RT_SHAPE_SPHERE ? rt_intersect_sphere(o, unit, t_min, t_max, hit)
+                                              : rt_intersect_cylinder(o, unit, t_min, t_max, hit);
+    if (!found) return false;
+    hit->t = rt_div(hit->t, len);
+    return hit->t > rs->ray.t_min && hit->t < rs->ray.t_max;
+}
+
+/* Keeps prim's hit in *best if it is nearer, or as near and a lower reference. */
+__attribute__((always_inline)) static inline void consider(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs,
+                                                           rt_scene_hit *best, bool *found, int kx, int ky, int kz)
+{
+    rt_prim_hit h;
+    if (!prim_intersect(scene, prim, rs, &h, kx, ky, kz)) return;
+    if (*found && (h.t > best->hit.t || (h.t == best->hit.t && prim > best->prim))) return;
+    best->hit = h;
+    best->prim = prim;
+    *found = true;
+}
+
+__attribute__((always_inline)) static inline bool leaf_loop(const rt_scene *scene, uint32_t first, uint32_t count,
+                                                            const rt_ray_setup *rs, bool any, rt_scene_hit *best,
+                                                            bool *found, int kx, int ky, int kz)
+{
+    const uint32_t *refs = scene->bvh.prim_refs;
+    for (uint32_t i = first; i < first + count; i++) {
+        consider(scene, refs[i], rs, best, found, kx, ky, kz);
+        if (any && *found) break;
+    }
+    return *found;
+}
+
+/* The references prim_refs[first .. first + count), out of line so that the traversal
+ * loop keeps its registers, with one copy of the loop per axis permutation; with `any`,
+ * stops at the first hit. Returns *found. */
+__attribute__((noinline)) static bool visit_leaf(const rt_scene *scene, uint32_t first, uint32_t count,
+                                                 const rt_ray_setup *rs, bool any, rt_scene_hit *best, bool *found)
+{
+    bool swapped = rs->kx != (rs->kz + 1) % 3; /* see rt_intersect_prepare */
+    switch (rs->kz * 2 + swapped) {
+    case 0: return leaf_loop(scene, first, count, rs, any, best, found, 1, 2, 0);
+    case 1: return leaf_loop(scene, first, count, rs, any, best, found, 2, 1, 0);
+    case 2: return leaf_loop(scene, first, count, rs, any, best, found, 2, 0, 1);
+    case 3: return leaf_loop(scene, first, count, rs, any, best, found, 0, 2, 1);
+    case 4: return leaf_loop(scene, first, count, rs, any, best, found, 0, 1, 2);
+    default: return leaf_loop(scene, first, count, rs, any, best, found, 1, 0, 2);
+    }
+}
+
+static bool nearest_brute(const rt_scene *scene, const rt_ray_setup *rs, rt_scene_hit *out)
+{
+    bool found = false;
+    for (uint32_t p = 0; p < scene->prim_count; p++) consider(scene, p, rs, out, &found, rs->kx, rs->ky, rs->kz);
+    return found;
+}
+
+/* A child waiting to be visited: a node (count 0) or a leaf's references, and the
+ * distance at which the ray enters its box. */
+typedef struct {
+    uint32_t child, count;
+    rt_real t_enter;
+} stack_entry;
+
+/* Each wide level pushes at most RT_BVH_WIDTH - 1 children, after the root. */
+#define QUERY_STACK (RT_BVH_MAX_DEPTH * (RT_BVH_WIDTH - 1) + 1)
+
+static inline stack_entry child_entry(const rt_bvh_node *node, int c, rt_real t_enter)
+{
+    return (stack_entry){node->child[c], node->count[c], t_enter};
+}
+
+/* Of hit children a < b, returns the nearer (a on a tie) and pushes the other. */
+__attribute__((always_inline)) static inline stack_entry nearer_of(const rt_bvh_node *node, int a, int b,
+                                                                   const rt_real t[RT_BVH_WIDTH], stack_entry *stack,
+                                                                   uint32_t *top)
+{
+    if (t[b] < t[a]) {
+        stack[(*top)++] = child_entry(node, a, t[a]);
+        return child_entry(node, b, t[b]);
+    }
+    stack[(*top)++] = child_entry(node, b, t[b]);
+    return child_entry(node, a, t[a]);
+}
+
+/* Returns the nearest of the children in `hits`, pushing the others farthest first.
+ * One or two hits are told apart by branches, each with its slots as constants, not
+ * computed: a predicted branch lets the next node's load start before this node's test
+ * is done. */
+__attribute__((always_inline)) static inline stack_entry descend(const rt_bvh_node *node, unsigned hits,
+                                                                 const rt_real t[RT_BVH_WIDTH], stack_entry *stack,
+                                                                 uint32_t *top)
+{
+    switch (hits) {
+    case 1: return child_entry(node, 0, t[0]);
+    case 2: return child_entry(node, 1, t[1]);
+    case 4: return child_entry(node, 2, t[2]);
+    case 8: return child_entry(node, 3, t[3]);
+    case 3: return nearer_of(node, 0, 1, t, stack, top);
+    case 5: return nearer_of(node, 0, 2, t, stack, top);
+    case 6: return nearer_of(node, 1, 2, t, stack, top);
+    case 9: return nearer_of(node, 0, 3, t, stack, top);
+    case 10: return nearer_of(node, 1, 3, t, stack, top);
+    case 12: return nearer_of(node, 2, 3, t, stack, top);
+    default: break;
+    }
+    int order[RT_BVH_WIDTH], n = 0; /* the hit children by entry distance, ties by slot */
+    for (int c = 0; c < RT_BVH_WIDTH; c++) {
+        if (!(hits >> c & 1u)) continue;
+        int i = n++;
+        for (; i > 0 && t[order[i - 1]] > t[c]; i--) order[i] = order[i - 1];
+        order[i] = c;
+    }
+    for (int i = n - 1; i > 0; i--) stack[(*top)++] = child_entry(node, order[i], t[order[i]]);
+    return child_entry(node, order[0], t[order[0]]);
+}
+
+/* Boxes are tested against the best t itself (not below it), and a popped child is
+ * skipped only when it is entered beyond the best t, so ties to a lower reference survive.
+ * With `any`, the first hit found ends the search (rt_scene_any). */
+static bool nearest_bvh(const rt_scene *scene, const rt_ray_setup *rs, bool any, rt_scene_hit *out)
+{
+    const rt_bvh_node *nodes = scene->bvh.nodes;
+    slab_ray sr = slab_prepare(rs, &scene->bvh);
+    bool found = false;
+    stack_entry stack[QUERY_STACK];
+    uint32_t top = 0;
+    if (scene->prim_count == 0) return false;
+    stack[top++] = (stack_entry){0, 0, rs->ray.t_min}; /* the root node */
+    while (top > 0) {
+        stack_entry e = stack[--top];
+        if (found && e.t_enter > out->hit.t) continue;
+        /* Descend into the nearest child directly; the others wait on the stack. */
+        while (e.count == 0) {
+            const rt_bvh_node *node = &nodes[e.child];
+            rt_real limit = found ? out->hit.t : rs->ray.t_max, t[RT_BVH_WIDTH];
+            unsigned hits = slab_hit_children(&sr, node, limit, t);
+            if (!hits) break;
+            e = descend(node, hits, t, stack, &top);
+        }
+        if (e.count == 0) continue;
+        if (visit_leaf(scene, e.child, e.count, rs, any, out, &found) && any) return true;
+    }
+    return found;
+}
+
+bool rt_scene_nearest(const rt_scene *scene, const rt_ray_setup *rs, bool use_bvh, rt_scene_hit *out)
+{
+    return use_bvh ? nearest_bvh(scene, rs, false, out) : nearest_brute(scene, rs, out);
+}
+
+bool rt_scene_any(const rt_scene *scene, const rt_ray_setup *rs, bool use_bvh)
+{
+    rt_scene_hit first;
+    if (use_bvh) return nearest_bvh(scene, rs, true, &first);
+    rt_prim_hit h;
+    for (uint32_t p = 0; p < scene->prim_count; p++)
+        if (rt_scene_prim_intersect(scene, p, rs, &h)) return true;
+    return false;
+}
+
+uint32_t rt_scene_triangle_object(const rt_scene *scene, uint32_t triangle)
+{
+    /* The last mesh object whose first triangle is at or before it. */
+    uint32_t lo = 0, hi = scene->mesh_object_count;
+    while (hi - lo > 1) {
+        uint32_t mid = lo + (hi - lo) / 2;
+        if (scene->objects[scene->mesh_objects[mid]].first_triangle <= triangle) lo = mid;
+        else hi = mid;
+    }
+    return scene->mesh_objects[lo];
+}

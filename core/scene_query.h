@@ -1,0 +1,25 @@
+/* Scene queries: the nearest hit and whether anything is hit along a ray, through the
+ * BVH or (for checking) over every primitive. Nearest-hit ties go to the lower primitive
+ * reference, so a query returns the same primitive with or without the BVH. */
+#ifndef RT_SCENE_QUERY_H
+#define RT_SCENE_QUERY_H
+
+#include "intersect.h"
+#include "scene.h"
+
+typedef struct {
+    rt_prim_hit hit;
+    uint32_t prim; /* primitive reference (see rt_scene) */
+} rt_scene_hit;
+
+/* Tests one primitive against the ray. */
+bool rt_scene_prim_intersect(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs, rt_prim_hit *hit);
+
+/* Nearest hit in (t_min, t_max); use_bvh = false tests every primitive (for checking). */
+bool rt_scene_nearest(const rt_scene *scene, const rt_ray_setup *rs, bool use_bvh, rt_scene_hit *out);
+/* Whether any primitive is hit in (t_min, t_max): true exactly when rt_scene_nearest finds a hit. */
+bool rt_scene_any(const rt_scene *scene, const rt_ray_setup *rs, bool use_bvh);
+/* The mesh object a triangle (an index into rt_scene.triangles) belongs to. */
+uint32_t rt_scene_triangle_object(const rt_scene *scene, uint32_t triangle);
+
+#endif

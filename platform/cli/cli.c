@@ -1,0 +1,98 @@
+/* Argument-parsing helpers; see cli.h. */
+#include "cli/cli.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "cli/exit_codes.h"
+
+bool rtp_cli_parse_u32(const char *s, uint32_t lo, uint32_t hi, uint32_t *out)
+{
+    if (!s || *s < '0' || *s > '9') return false;
+    errno = 0;
+    char *end;
+    unsigned long long v = strtoull(s, &end, 10);
+    if (errno || *end || v < lo || v > hi) return false;
+    *out = (uint32_t)v;
+    return true;
+}
+
+bool rtp_cli_parse_bytes(const char *s, size_t *out)
+{
+    if (!s || *s < '0' || *s > '9') return false;
+    errno = 0;
+    char *end;
+    unsigned long long v = strtoull(s, &end, 10);
+    unsigned shift = 0;
+    if (*end == 'K' || *end == 'k') shift = 10, end++;
+    else if (*end == 'M' || *end == 'm') shift = 20, end++;
+    else if (*end == 'G' || *end == 'g') shift = 30, end++;
+    if (errno || *end || v == 0 || v > (SIZE_MAX >> shift)) return false;
+    *out = (size_t)v << shift;
+    return true;
+}
+
+int rtp_cli_usage_error(const char *cmd, const char *msg, const char *arg)
+{
+    if (arg) fprintf(stderr, "rtk %s: %s '%s' (see rtk %s --help)\n", cmd, msg, arg, cmd);
+    else fprintf(stderr, "rtk %s: %s (see rtk %s --help)\n", cmd, msg, cmd);
+    return RTP_EXIT_USAGE;
+}
+
+int rtp_cli_scene_option(const char *cmd, int argc, char **argv, int *i, rtp_scene_options *opt)
+{
+    const char *arg = argv[*i];
+    const char *val = *i + 1 < argc ? argv[*i + 1] : NULL;
+    uint32_t n;
+    if (!strcmp(arg, "--width") || !strcmp(arg, "--height")) {
+        if (!rtp_cli_parse_u32(val, 1, 16384, &n)) return -rtp_cli_usage_error(cmd, "expected 1..16384 after", arg);
+        *(arg[2] == 'w' ? &opt->width : &opt->height) = n;
+    } else if (!strcmp(arg, "--depth")) {
+        if (!rtp_cli_parse_u32(val, 0, 64, &n)) return -rtp_cli_usage_error(cmd, "expected 0..64 after", arg);
+        opt->depth = (int32_t)n;
+    } else if (!strcmp(arg, "--aa")) {
+        if (!rtp_cli_parse_u32(val, 0, 7, &n)) return -rtp_cli_usage_error(cmd, "expected 0..7 after", arg);
+        opt->aa = (int32_t)n;
+    } else if (!strcmp(arg, "--spp")) {
+        /* The format counts samples as 4^index: a power of 4, 1..16384 (§5.1.1). */
+        if (!rtp_cli_parse_u32(val, 1, 16384, &n) || (n & (n - 1)) || !(n & 0x55555555u))
+            return -rtp_cli_usage_error(cmd, "expected a power of 4 (1, 4, 16, ..., 16384) after", arg);
+        opt->aa = __builtin_ctz(n) / 2;
+    } else if (!strcmp(arg, "--assets")) {
+        if (!val) return -rtp_cli_usage_error(cmd, "missing folder after", arg);
+        opt->assets_root = val;
+    } else if (!strcmp(arg, "--max-memory")) {
+        if (!rtp_cli_parse_bytes(val, &opt->max_memory)) return -rtp_cli_usage_error(cmd, "expected a size such as 512M after", arg);
+    } else {
+        return 0;
+    }
+    (*i)++;
+    return 1;
+}
+
+int rtp_cli_common_option(const char *cmd, const char *usage, int argc, char **argv, int *i, rtp_scene_options *opt)
+{
+    const char *arg = argv[*i];
+    if (!strcmp(arg, "--help") || !strcmp(arg, "-h")) {
+        fputs(usage, stdout);
+        exit(RTP_EXIT_OK);
+    }
+    return rtp_cli_scene_option(cmd, argc, argv, i, opt);
+}
+
+int rtp_cli_scene_argument(const char *cmd, const char *arg, const char **scene)
+{
+    if (arg[0] == '-' && arg[1]) return rtp_cli_usage_error(cmd, "unknown option", arg);
+    if (*scene) return rtp_cli_usage_error(cmd, "unexpected argument", arg);
+    *scene = arg;
+    return RTP_EXIT_OK;
+}
+
+int rtp_cli_open_scene(const char *cmd, const char *path, const rtp_scene_options *opt, rtp_scene *out)
+{
+    char err[RTP_ERR_SIZE];
+    int rc = rtp_scene_open(path, opt, out, err, sizeof err);
+    if (rc != RTP_EXIT_OK) fprintf(stderr, "rtk %s: %s\n", cmd, err);
+    return rc;
+}

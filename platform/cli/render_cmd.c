@@ -1,0 +1,133 @@
+/* `rtk render`: scene file in, image file (and/or render hash) out. */
+#include "cli/render_cmd.h"
+
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include "cli/cli.h"
+#include "cli/exit_codes.h"
+#include "image/image.h"
+#include "thread/threads.h"
+#include "load/scene_open.h"
+#include "sha256.h"
+
+static volatile int interrupted;
+
+static void on_signal(int sig)
+{
+    (void)sig;
+    interrupted = 1;
+}
+
+static const char usage[] =
+    "usage: rtk render SCENE.yaml [-o OUT.png|OUT.ppm] [options]\n"
+    "\n"
+    "Renders a CSE457 scene file. The output format follows the file name (.png, else\n"
+    "binary PPM); the file is written atomically, or not at all on error.\n"
+    "\n"
+    "  -o, --output FILE   image to write (optional with --hash)\n"
+    RTP_CLI_SCENE_OPTIONS_HELP
+    "  --threads N         worker threads for the BVH build and the render (default: all\n"
+    "                      cores); the image does not depend on it\n"
+    "  --tile N            tile side in pixels (default 32); the image does not depend on it\n"
+    "  --hash              print the render hash (SHA-256 of the P6 PPM bytes) on stdout\n"
+    "  --no-bvh            test every primitive for every ray (slow; the image is identical)\n"
+    "  --quiet             no progress bar\n"
+    "  --progress          progress bar even when stderr is not a terminal\n"
+    "\n"
+    "Exit codes: 0 ok, 2 bad arguments, 3 bad or missing input file, 4 output not\n"
+    "writable, 5 over the memory cap, 6 interrupted.\n";
+
+typedef struct {
+    const char *scene, *output;
+    rtp_scene_options build;
+    rtp_threads_options parallel;
+    bool hash, use_bvh, quiet, force_progress;
+} render_args;
+
+static int parse_args(int argc, char **argv, render_args *a)
+{
+    memset(a, 0, sizeof *a);
+    a->build = rtp_scene_default_options();
+    a->use_bvh = true;
+    for (int i = 1; i < argc; i++) {
+        const char *arg = argv[i];
+        const char *val = i + 1 < argc ? argv[i + 1] : NULL;
+        uint32_t n;
+        int common = rtp_cli_common_option("render", usage, argc, argv, &i, &a->build);
+        if (common < 0) return -common;
+        if (common > 0) continue;
+        if (!strcmp(arg, "-o") || !strcmp(arg, "--output")) {
+            if (!val) return rtp_cli_usage_error("render", "missing file after", arg);
+            a->output = val, i++;
+        } else if (!strcmp(arg, "--threads")) {
+            if (!rtp_cli_parse_u32(val, 1, 1024, &n)) return rtp_cli_usage_error("render", "expected 1..1024 after", arg);
+            a->parallel.threads = a->build.threads = n, i++;
+        } else if (!strcmp(arg, "--tile")) {
+            if (!rtp_cli_parse_u32(val, 1, 4096, &n)) return rtp_cli_usage_error("render", "expected 1..4096 after", arg);
+            a->parallel.tile_size = n, i++;
+        } else if (!strcmp(arg, "--hash")) {
+            a->hash = true;
+        } else if (!strcmp(arg, "--no-bvh")) {
+            a->use_bvh = false;
+        } else if (!strcmp(arg, "--quiet")) {
+            a->quiet = true;
+        } else if (!strcmp(arg, "--progress")) {
+            a->force_progress = true;
+        } else {
+            int rc = rtp_cli_scene_argument("render", arg, &a->scene);
+            if (rc != RTP_EXIT_OK) return rc;
+        }
+    }
+    if (!a->scene) return rtp_cli_usage_error("render", "no scene file given", NULL);
+    if (!a->output && !a->hash) return rtp_cli_usage_error("render", "nothing to do: give -o FILE and/or --hash", NULL);
+    return RTP_EXIT_OK;
+}
+
+static void print_hash(const rtp_image *img)
+{
+    uint8_t digest[32];
+    rt_sha256_ppm(img->rgb, img->width, img->height, digest);
+    for (int i = 0; i < 32; i++) printf("%02x", digest[i]);
+    printf("\n");
+}
+
+int rtp_cmd_render(int argc, char **argv)
+{
+    render_args a;
+    int rc = parse_args(argc, argv, &a);
+    if (rc != RTP_EXIT_OK) return rc;
+    rtp_scene built;
+    rc = rtp_cli_open_scene("render", a.scene, &a.build, &built);
+    if (rc != RTP_EXIT_OK) return rc;
+    const rt_camera *cam = &built.scene.camera;
+    rtp_image img = {cam->width, cam->height, calloc((size_t)cam->width * cam->height, 3)};
+    if (!img.rgb) {
+        fprintf(stderr, "rtk render: %s: no memory for a %ux%u image\n", a.scene, cam->width, cam->height);
+        rtp_scene_close(&built);
+        return RTP_EXIT_MEMORY;
+    }
+    rt_tracer tracer = {&built.scene, a.use_bvh, NULL};
+    a.parallel.progress = !a.quiet && (a.force_progress || isatty(STDERR_FILENO));
+    a.parallel.cancel = &interrupted;
+    signal(SIGINT, on_signal);
+    signal(SIGTERM, on_signal);
+    bool complete = rtp_threads_render(&tracer, &a.parallel, img.rgb);
+    rtp_scene_close(&built);
+    if (!complete) {
+        fprintf(stderr, "rtk render: %s: interrupted; nothing written\n", a.scene);
+        rtp_image_free(&img);
+        return RTP_EXIT_INTERRUPTED;
+    }
+    rc = RTP_EXIT_OK;
+    char err[RTP_ERR_SIZE];
+    if (a.output && !rtp_image_write(a.output, &img, err, sizeof err)) {
+        fprintf(stderr, "rtk render: %s\n", err);
+        rc = RTP_EXIT_OUTPUT;
+    }
+    if (rc == RTP_EXIT_OK && a.hash) print_hash(&img);
+    rtp_image_free(&img);
+    return rc;
+}

@@ -1,0 +1,140 @@
+/* Job sets and the tile scheduler over POSIX threads; see threads.h. */
+#include "thread/threads.h"
+
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <time.h>
+#include <unistd.h>
+
+typedef struct {
+    const rt_tracer *tracer;
+    uint8_t *rgb;
+    uint32_t tile, tiles_x, tile_count;
+    atomic_uint next_tile;
+    atomic_uint done_tiles;
+    volatile int *cancel;
+} job;
+
+static void *worker(void *arg)
+{
+    job *j = arg;
+    const rt_camera *cam = &j->tracer->scene->camera;
+    for (;;) {
+        if (j->cancel && *j->cancel) break;
+        unsigned t = atomic_fetch_add(&j->next_tile, 1);
+        if (t >= j->tile_count) break;
+        uint32_t x0 = (t % j->tiles_x) * j->tile, y0 = (t / j->tiles_x) * j->tile;
+        uint32_t x1 = x0 + j->tile < cam->width ? x0 + j->tile : cam->width;
+        uint32_t y1 = y0 + j->tile < cam->height ? y0 + j->tile : cam->height;
+        rt_render_region(j->tracer, x0, y0, x1, y1, j->rgb);
+        atomic_fetch_add(&j->done_tiles, 1);
+    }
+    return NULL;
+}
+
+static double seconds_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+static void draw_progress(unsigned done, unsigned total, double elapsed)
+{
+    int width = 40, filled = total ? (int)((uint64_t)done * width / total) : width;
+    char bar[64];
+    for (int i = 0; i < width; i++) bar[i] = i < filled ? '#' : '.';
+    bar[width] = 0;
+    double left = done > 0 ? elapsed * (total - done) / done : 0.0;
+    fprintf(stderr, "\r[%s] %3u%%  %.1fs elapsed, ~%.1fs left ", bar, total ? done * 100 / total : 100, elapsed, left);
+    fflush(stderr);
+}
+
+uint32_t rtp_threads_count(uint32_t requested)
+{
+    long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+    return requested ? requested : cpus > 0 ? (uint32_t)cpus : 1;
+}
+
+/* One job set being run: the next job index to hand out. */
+typedef struct {
+    rt_job_fn *job;
+    void *arg;
+    uint32_t jobs;
+    atomic_uint next;
+} job_set;
+
+typedef struct {
+    job_set *set;
+    uint32_t worker;
+} set_worker;
+
+static void take_jobs(job_set *set, uint32_t worker)
+{
+    for (unsigned i; (i = atomic_fetch_add(&set->next, 1)) < set->jobs;) set->job(set->arg, i, worker);
+}
+
+static void *set_worker_main(void *arg)
+{
+    set_worker *w = arg;
+    take_jobs(w->set, w->worker);
+    return NULL;
+}
+
+static void run_on_threads(const rt_workers *w, rt_job_fn *fn, void *arg, uint32_t jobs)
+{
+    job_set set = {.job = fn, .arg = arg, .jobs = jobs};
+    atomic_init(&set.next, 0);
+    uint32_t extra = (w->count < jobs ? w->count : jobs) - 1, started = 0;
+    pthread_t *threads = calloc(extra, sizeof *threads);
+    set_worker *workers = calloc(extra, sizeof *workers);
+    for (; threads && workers && started < extra; started++) {
+        workers[started] = (set_worker){&set, started + 1};
+        if (pthread_create(&threads[started], NULL, set_worker_main, &workers[started]) != 0) break;
+    }
+    take_jobs(&set, 0);
+    for (uint32_t i = 0; i < started; i++) pthread_join(threads[i], NULL);
+    free(threads);
+    free(workers);
+}
+
+rt_workers rtp_threads_workers(uint32_t threads)
+{
+    rt_workers w = {rtp_threads_count(threads), run_on_threads};
+    return w;
+}
+
+bool rtp_threads_render(const rt_tracer *tr, const rtp_threads_options *opt, uint8_t *rgb)
+{
+    const rt_camera *cam = &tr->scene->camera;
+    job j;
+    j.tracer = tr;
+    j.rgb = rgb;
+    j.tile = opt->tile_size ? opt->tile_size : 32;
+    j.tiles_x = (cam->width + j.tile - 1) / j.tile;
+    j.tile_count = j.tiles_x * ((cam->height + j.tile - 1) / j.tile);
+    atomic_init(&j.next_tile, 0);
+    atomic_init(&j.done_tiles, 0);
+    j.cancel = opt->cancel;
+    uint32_t n = rtp_threads_count(opt->threads);
+    if (n > j.tile_count) n = j.tile_count ? j.tile_count : 1;
+    pthread_t *threads = calloc(n, sizeof *threads);
+    if (!threads) return false;
+    uint32_t started = 0;
+    while (started < n && pthread_create(&threads[started], NULL, worker, &j) == 0) started++;
+    if (started == 0) worker(&j); /* no thread could start: render on this one */
+    double start = seconds_now();
+    while (opt->progress && atomic_load(&j.done_tiles) < j.tile_count && !(j.cancel && *j.cancel)) {
+        draw_progress(atomic_load(&j.done_tiles), j.tile_count, seconds_now() - start);
+        usleep(100000);
+    }
+    for (uint32_t i = 0; i < started; i++) pthread_join(threads[i], NULL);
+    free(threads);
+    if (opt->progress) {
+        draw_progress(atomic_load(&j.done_tiles), j.tile_count, seconds_now() - start);
+        fputc('\n', stderr);
+    }
+    return atomic_load(&j.done_tiles) == j.tile_count;
+}

@@ -1,0 +1,31 @@
+/* Worker threads: the core's job sets (workers.h) and the tile renderer, with an
+ * optional progress bar. */
+#ifndef RTP_THREADS_H
+#define RTP_THREADS_H
+
+#include <stdbool.h>
+#include <stdint.h>
+#include "render.h"
+
+typedef struct {
+    uint32_t threads;   /* 0 = one per online CPU */
+    uint32_t tile_size; /* pixels per tile side; 0 = 32 */
+    bool progress;      /* draw a progress bar on stderr */
+    /* Set asynchronously (e.g. by a signal handler) to stop early; checked between tiles. */
+    volatile int *cancel;
+} rtp_threads_options;
+
+/* Fills rgb (width * height * 3). Returns false if cancelled or a thread could not start
+ * (then rgb is incomplete and must not be used). The pixels never depend on the thread
+ * count, tile size or scheduling: each pixel is a function of the scene alone. */
+bool rtp_threads_render(const rt_tracer *tr, const rtp_threads_options *opt, uint8_t *rgb);
+
+/* The number of threads a request stands for: itself, or one per online CPU for 0. */
+uint32_t rtp_threads_count(uint32_t requested);
+
+/* Workers for the core's job sets on up to `threads` POSIX threads (0: one per online
+ * CPU), the calling thread among them. A thread that cannot start leaves its share to
+ * the others, so a job set always completes. */
+rt_workers rtp_threads_workers(uint32_t threads);
+
+#endif
