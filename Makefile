@@ -40,7 +40,7 @@ CORE_OBJ := $(CORE_SRC:%.c=$(BUILD)/%.o)
 PLATFORM_OBJ := $(PLATFORM_SRC:%.c=$(BUILD)/%.o)
 TEST_OBJ := $(TEST_SRC:%.c=$(BUILD)/%.o)
 
-.PHONY: all deps demo check check-determinism bless clean core-sources
+.PHONY: all deps demo check check-determinism bless clean core-sources format format-check
 all: $(BUILD)/rtk
 
 $(BUILD)/core/%.o: core/%.c
@@ -109,6 +109,15 @@ check-determinism: deps
 # Rewrites tests/golden/$(RT_REAL).sha256; say why in the commit that changes it.
 bless: $(BUILD)/rtk
 	tests/golden.sh bless $(BUILD)/rtk $(RT_REAL)
+
+# The C sources in the style of .clang-format (clang-format 14): `make format` rewrites
+# them, `make format-check` lists every file that differs and fails.
+FORMAT_SRC = $(shell git ls-files '*.c' '*.h' 2>/dev/null)
+format:
+	clang-format -i $(FORMAT_SRC)
+format-check:
+	@command -v clang-format >/dev/null || { echo "format-check: clang-format is not installed"; exit 1; }
+	@clang-format --dry-run --Werror $(FORMAT_SRC) && echo "format-check: $(words $(FORMAT_SRC)) files in style"
 
 clean:
 	rm -rf build build-fixed build-baremetal demo.png

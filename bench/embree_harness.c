@@ -8,14 +8,14 @@
  * a default (all-threads) device, then times rtcIntersect1 on the camera rays and
  * rtcOccluded1 on the shadow rays with 1 and with all threads, driven by the same loop
  * as rtk's harness. Prints "key value" lines on stdout, progress on stderr. */
+#include "timing.h"
+#include "workload.h"
 #include <embree3/rtcore.h>
 #include <math.h>
 #include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "timing.h"
-#include "workload.h"
 #if defined(__SSE2__)
 #include <xmmintrin.h>
 #endif
@@ -67,8 +67,10 @@ static RTCScene new_scene(RTCDevice device, const bench_workload *w)
 {
     RTCScene scene = rtcNewScene(device);
     RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    float *v = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), w->vertex_count);
-    unsigned *t = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), w->triangle_count);
+    float *v =
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), w->vertex_count);
+    unsigned *t =
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), w->triangle_count);
     for (size_t i = 0; i < 3 * (size_t)w->vertex_count; i++) v[i] = (float)w->positions[i];
     for (size_t i = 0; i < 3 * (size_t)w->triangle_count; i++) t[i] = w->indices[i];
     rtcCommitGeometry(g);

@@ -9,14 +9,14 @@
  * Camera rays are nearest-hit queries (rt_scene_nearest, as rtcIntersect1); shadow rays
  * are any-hit queries with t_max = the light distance (rt_scene_any, as rtcOccluded1),
  * which is what rtk's shader asks in opaque-shadow mode. */
+#include "load/scene_open.h"
+#include "rtk_rays.h"
+#include "thread/threads.h"
+#include "timing.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "thread/threads.h"
-#include "rtk_rays.h"
-#include "load/scene_open.h"
-#include "timing.h"
 
 typedef struct {
     const rt_scene *scene;
@@ -47,15 +47,16 @@ static rt_ray from_bench(const bench_ray *b)
 {
     rt_ray r;
     r.origin = rt_v3(rt_from_double(b->origin[0]), rt_from_double(b->origin[1]), rt_from_double(b->origin[2]));
-    r.direction = rt_v3(rt_from_double(b->direction[0]), rt_from_double(b->direction[1]), rt_from_double(b->direction[2]));
+    r.direction =
+        rt_v3(rt_from_double(b->direction[0]), rt_from_double(b->direction[1]), rt_from_double(b->direction[2]));
     r.t_min = rt_from_double(b->t_min);
     r.t_max = isinf(b->t_max) ? RT_REAL_MAX : rt_from_double(b->t_max);
     return r;
 }
 
 /* Times the queries `fn` makes on `count` rays (see bench_time_rays). */
-static bool time_queries(const char *name, bench_range_fn fn, const rt_scene *scene, const bench_ray *in, uint32_t count,
-                         uint32_t repeats)
+static bool time_queries(const char *name, bench_range_fn fn, const rt_scene *scene, const bench_ray *in,
+                         uint32_t count, uint32_t repeats)
 {
     rt_ray *rays = malloc((size_t)count * sizeof *rays + 1);
     uint8_t *hit = calloc((size_t)count + 1, 1);
@@ -78,7 +79,8 @@ static bool time_queries(const char *name, bench_range_fn fn, const rt_scene *sc
 static double time_build(const rt_scene *scene, uint32_t threads, uint32_t repeats, double *best_cpu)
 {
     size_t n = scene->prim_count;
-    size_t size = n * (2 * sizeof(rt_bvh_node) + sizeof(uint32_t) + sizeof(rt_aabb) + sizeof(rt_vec3)) + ((size_t)1 << 20);
+    size_t size =
+        n * (2 * sizeof(rt_bvh_node) + sizeof(uint32_t) + sizeof(rt_aabb) + sizeof(rt_vec3)) + ((size_t)1 << 20);
     void *memory = malloc(size);
     if (!memory) {
         fprintf(stderr, "rtk-bench: cannot allocate %zu MiB for the BVH build\n", size >> 20);
@@ -150,9 +152,12 @@ int main(int argc, char **argv)
         const char *val = i + 1 < argc ? argv[i + 1] : NULL;
         if (!val) return usage();
         bool good = false;
-        if (!strcmp(argv[i], "--assets")) opt.assets_root = val, good = true;
-        else if (!strcmp(argv[i], "--size")) good = sscanf(val, "%ux%u", &width, &height) == 2 && width && height;
-        else if (!strcmp(argv[i], "--repeats")) good = sscanf(val, "%u", &repeats) == 1 && repeats;
+        if (!strcmp(argv[i], "--assets"))
+            opt.assets_root = val, good = true;
+        else if (!strcmp(argv[i], "--size"))
+            good = sscanf(val, "%ux%u", &width, &height) == 2 && width && height;
+        else if (!strcmp(argv[i], "--repeats"))
+            good = sscanf(val, "%u", &repeats) == 1 && repeats;
         if (!good) return usage();
         i++;
     }
@@ -170,7 +175,9 @@ int main(int argc, char **argv)
     bool ok;
     if (!strcmp(argv[1], "rays")) {
         ok = bench_make_workload(scene, width, height, &w) && bench_workload_write(argv[3], &w);
-        if (ok) printf("triangles %u\nprimary_rays %u\nshadow_rays %u\n", w.triangle_count, w.primary_count, w.shadow_count);
+        if (ok)
+            printf("triangles %u\nprimary_rays %u\nshadow_rays %u\n", w.triangle_count, w.primary_count,
+                   w.shadow_count);
     } else {
         ok = bench_workload_read(argv[3], &w);
         if (ok && (w.triangle_count != scene->triangle_count || scene->prim_count != scene->triangle_count)) {
@@ -180,7 +187,8 @@ int main(int argc, char **argv)
         if (ok) {
             printf("kernel rtk-%s\nload_and_build_s %.4f\nthreads_all %u\n", RT_REAL_NAME, load_s, bench_cpu_count());
             print_memory(scene);
-            ok = time_builds(scene, repeats) && time_queries("primary", nearest_range, scene, w.primary, w.primary_count, repeats) &&
+            ok = time_builds(scene, repeats) &&
+                 time_queries("primary", nearest_range, scene, w.primary, w.primary_count, repeats) &&
                  time_queries("shadow", any_range, scene, w.shadow, w.shadow_count, repeats);
         }
     }

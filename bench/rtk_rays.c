@@ -1,11 +1,11 @@
 /* Benchmark rays from an rtk scene; see rtk_rays.h. */
 #include "rtk_rays.h"
 
+#include "render.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "render.h"
 
 static bench_ray to_bench(rt_ray r)
 {

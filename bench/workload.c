@@ -13,10 +13,7 @@ static bool put(FILE *f, const void *p, size_t size, size_t count)
     return count == 0 || fwrite(p, size, count, f) == count;
 }
 
-static bool get(FILE *f, void *p, size_t size, size_t count)
-{
-    return count == 0 || fread(p, size, count, f) == count;
-}
+static bool get(FILE *f, void *p, size_t size, size_t count) { return count == 0 || fread(p, size, count, f) == count; }
 
 bool bench_workload_write(const char *path, const bench_workload *w)
 {

@@ -17,8 +17,8 @@ typedef struct {
 
 typedef struct {
     uint32_t vertex_count, triangle_count;
-    double *positions;  /* 3 per vertex, world space */
-    uint32_t *indices;  /* 3 per triangle */
+    double *positions;      /* 3 per vertex, world space */
+    uint32_t *indices;      /* 3 per triangle */
     uint32_t width, height; /* primary rays: one per pixel centre, row 0 at the top */
     uint32_t primary_count, shadow_count;
     bench_ray *primary; /* camera rays */

@@ -11,7 +11,8 @@ typedef struct {
 /* The box that holds nothing: every union with it is the other box. */
 static inline rt_aabb rt_aabb_empty(void)
 {
-    rt_aabb b = {{RT_REAL_MAX, RT_REAL_MAX, RT_REAL_MAX}, {rt_neg(RT_REAL_MAX), rt_neg(RT_REAL_MAX), rt_neg(RT_REAL_MAX)}};
+    rt_aabb b = {{RT_REAL_MAX, RT_REAL_MAX, RT_REAL_MAX},
+                 {rt_neg(RT_REAL_MAX), rt_neg(RT_REAL_MAX), rt_neg(RT_REAL_MAX)}};
     return b;
 }
 

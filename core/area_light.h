@@ -5,8 +5,8 @@
 #ifndef RT_AREA_LIGHT_H
 #define RT_AREA_LIGHT_H
 
-#include "scene.h"
 #include "ray.h"
+#include "scene.h"
 
 /* What a camera ray that ends on a light's square brings back, in units of the
  * light's Color. §12.1 measures that the solution's emission is far above 1 (partly

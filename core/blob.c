@@ -11,7 +11,7 @@ typedef struct {
     uint8_t *out;      /* BLOB_WRITE */
     const uint8_t *in; /* BLOB_READ */
     size_t capacity, pos;
-    rt_arena *arena;   /* BLOB_READ */
+    rt_arena *arena; /* BLOB_READ */
     bool failed, out_of_memory;
 } blob_io;
 

@@ -17,19 +17,15 @@ static const rt_vec3 cube_positions[24] = {
 };
 
 static const rt_vec3 cube_normals[24] = {
-    {O, O, -I}, {O, O, -I}, {O, O, -I}, {O, O, -I},
-    {O, O, I},  {O, O, I},  {O, O, I},  {O, O, I},
-    {-I, O, O}, {-I, O, O}, {-I, O, O}, {-I, O, O},
-    {I, O, O},  {I, O, O},  {I, O, O},  {I, O, O},
-    {O, -I, O}, {O, -I, O}, {O, -I, O}, {O, -I, O},
-    {O, I, O},  {O, I, O},  {O, I, O},  {O, I, O},
+    {O, O, -I}, {O, O, -I}, {O, O, -I}, {O, O, -I}, {O, O, I}, {O, O, I}, {O, O, I}, {O, O, I},
+    {-I, O, O}, {-I, O, O}, {-I, O, O}, {-I, O, O}, {I, O, O}, {I, O, O}, {I, O, O}, {I, O, O},
+    {O, -I, O}, {O, -I, O}, {O, -I, O}, {O, -I, O}, {O, I, O}, {O, I, O}, {O, I, O}, {O, I, O},
 };
 
 /* Every face lists its corners with uv (0,0), (0,1), (1,0), (1,1). */
 static const rt_vec2 cube_uvs[24] = {
-    {O, O}, {O, I}, {I, O}, {I, I}, {O, O}, {O, I}, {I, O}, {I, I},
-    {O, O}, {O, I}, {I, O}, {I, I}, {O, O}, {O, I}, {I, O}, {I, I},
-    {O, O}, {O, I}, {I, O}, {I, I}, {O, O}, {O, I}, {I, O}, {I, I},
+    {O, O}, {O, I}, {I, O}, {I, I}, {O, O}, {O, I}, {I, O}, {I, I}, {O, O}, {O, I}, {I, O}, {I, I},
+    {O, O}, {O, I}, {I, O}, {I, I}, {O, O}, {O, I}, {I, O}, {I, I}, {O, O}, {O, I}, {I, O}, {I, I},
 };
 
 /* Per face, corners (0,1,2)(2,1,3) for back/left/bottom and (1,0,2)(1,2,3) for front/right/top. */

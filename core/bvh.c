@@ -151,9 +151,9 @@ static void merge_bins(bins *into, const bins *later)
 }
 
 typedef struct {
-    int axis, bin;          /* refs in bins <= bin go left */
-    rt_real lo, scale;      /* the axis' binning */
-    rt_aabb left, right;    /* the children's bounds, unions of their bins */
+    int axis, bin;       /* refs in bins <= bin go left */
+    rt_real lo, scale;   /* the axis' binning */
+    rt_aabb left, right; /* the children's bounds, unions of their bins */
 } split;
 
 /* The cheapest split plane between bins of a task's references; false if a leaf is
@@ -390,8 +390,10 @@ static uint32_t split_level(build *b, uint32_t count, uint32_t *subtrees, uint32
         (*inner)++;
         for (int k = 0; k < 2; k++) {
             const build_task *kid = &b->children[2 * t + k];
-            if (is_top(b, kid)) b->level[next++] = *kid;
-            else b->subtrees[(*subtrees)++] = *kid;
+            if (is_top(b, kid))
+                b->level[next++] = *kid;
+            else
+                b->subtrees[(*subtrees)++] = *kid;
         }
     }
     return next;
@@ -443,8 +445,10 @@ static uint32_t build_binary(build *b, uint32_t n)
     b->extent = aabb_magnitude(root.bounds);
     b->grid = rt_bound_grid(b->extent);
     uint32_t inner = 0, subtrees = 0, level = 0;
-    if (is_top(b, &root)) b->level[level++] = root;
-    else b->subtrees[subtrees++] = root;
+    if (is_top(b, &root))
+        b->level[level++] = root;
+    else
+        b->subtrees[subtrees++] = root;
     while (level > 0) level = split_level(b, level, &subtrees, &inner);
     rt_workers_run(b->workers, subtree_job, b, subtrees);
     for (uint32_t s = 0; s < subtrees; s++) inner += b->subtree_inner[s];

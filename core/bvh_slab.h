@@ -48,15 +48,14 @@ static inline v2df v2df_from_hi(v4sf a)
  * ((extent + |o|) |inv| > 2^120, |inv| outside [2^-100, 2^100]), take the double test. */
 typedef struct {
     v4sf o_near[3], o_far[3], inv_near[3], inv_far[3], t_min; /* each value in all four lanes */
-    rt_real t_max;  /* the ray's t_max, */
-    float t_max_f; /* rounded up */
+    rt_real t_max;                                            /* the ray's t_max, */
+    float t_max_f;                                            /* rounded up */
 } float_slab;
 
 static inline v4sf v4sf_all(float f) { return (v4sf){f, f, f, f}; }
 
 /* Fills *f for the ray and returns true, or false if the ray must take the double test. */
-static bool float_slab_prepare(rt_vec3 origin, rt_vec3 inv, rt_real t_min, rt_real t_max, rt_real extent,
-                               float_slab *f)
+static bool float_slab_prepare(rt_vec3 origin, rt_vec3 inv, rt_real t_min, rt_real t_max, rt_real extent, float_slab *f)
 {
     f->t_max = t_max;
     f->t_max_f = rt_bound_above(t_max, 0);

@@ -23,8 +23,8 @@ rt_ray rt_camera_ray(const rt_camera *cam, rt_real x, rt_real y)
         /* Parallel rays over a view Orthographic View Width wide (format §8.3). */
         rt_real half_w = rt_mul(cam->ortho_width, RT_C(0.5));
         rt_real half_h = rt_div(half_w, cam->aspect);
-        ray.origin = rt_v3_add(cam->eye, rt_v3_add(rt_v3_scale(cam->right, rt_mul(sx, half_w)),
-                                                   rt_v3_scale(cam->up, rt_mul(sy, half_h))));
+        ray.origin = rt_v3_add(
+            cam->eye, rt_v3_add(rt_v3_scale(cam->right, rt_mul(sx, half_w)), rt_v3_scale(cam->up, rt_mul(sy, half_h))));
         ray.direction = cam->forward;
         return ray;
     }
@@ -47,16 +47,14 @@ rt_ray rt_camera_lens_ray(const rt_camera *cam, rt_real x, rt_real y, rt_vec2 le
     return ray;
 }
 
-uint32_t rt_camera_samples(const rt_camera *cam)
-{
-    return 1u << (2 * cam->trace.samples_per_pixel_index);
-}
+uint32_t rt_camera_samples(const rt_camera *cam) { return 1u << (2 * cam->trace.samples_per_pixel_index); }
 
 rt_ray rt_camera_grid_ray(const rt_camera *cam, uint32_t column, uint32_t row, uint32_t a, uint32_t b, uint32_t side)
 {
     uint32_t j = cam->height - 1 - row; /* buffer rows count from the bottom */
     rt_real s = rt_from_int(side);
-    rt_real x = rt_div(rt_add(rt_from_int(column), rt_div(rt_add(rt_from_int(a), RT_C(0.5)), s)), rt_from_int(cam->width));
+    rt_real x =
+        rt_div(rt_add(rt_from_int(column), rt_div(rt_add(rt_from_int(a), RT_C(0.5)), s)), rt_from_int(cam->width));
     rt_real y = rt_div(rt_add(rt_from_int(j), rt_div(rt_add(rt_from_int(b), RT_C(0.5)), s)), rt_from_int(cam->height));
     return rt_camera_ray(cam, x, y);
 }

@@ -48,8 +48,14 @@ static bool nearest_root(rt_real a, rt_real h, rt_real c, rt_real w2, rt_real t_
         t0 = t1;
         t1 = s;
     }
-    if (t0 > t_min && t0 < t_max && rt_is_finite(t0)) { *t = t0; return true; }
-    if (t1 > t_min && t1 < t_max && rt_is_finite(t1)) { *t = t1; return true; }
+    if (t0 > t_min && t0 < t_max && rt_is_finite(t0)) {
+        *t = t0;
+        return true;
+    }
+    if (t1 > t_min && t1 < t_max && rt_is_finite(t1)) {
+        *t = t1;
+        return true;
+    }
     return false;
 }
 

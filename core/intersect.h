@@ -14,7 +14,7 @@ typedef enum { RT_PART_SURFACE, RT_PART_CAP_BOTTOM, RT_PART_CAP_TOP } rt_part;
 
 typedef struct {
     rt_real t;
-    rt_real b1, b2;  /* triangle: barycentric weights of v[1] and v[2] */
+    rt_real b1, b2; /* triangle: barycentric weights of v[1] and v[2] */
     rt_part part;
 } rt_prim_hit;
 

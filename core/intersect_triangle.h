@@ -5,9 +5,9 @@
 
 /* rt_intersect_triangle with rs's axis permutation passed as kx, ky, kz: a caller that
  * passes constants (the BVH's leaf loop, once per leaf) picks coordinates without branches. */
-__attribute__((always_inline)) static inline bool rt_intersect_triangle_axes(const rt_ray_setup *rs, rt_vec3 a, rt_vec3 b,
-                                                                             rt_vec3 c, rt_prim_hit *hit, int kx, int ky,
-                                                                             int kz)
+__attribute__((always_inline)) static inline bool rt_intersect_triangle_axes(const rt_ray_setup *rs, rt_vec3 a,
+                                                                             rt_vec3 b, rt_vec3 c, rt_prim_hit *hit,
+                                                                             int kx, int ky, int kz)
 {
     /* Translate to the ray origin, permute and shear so the ray runs along +z (Woop,
      * Benthin and Wald's watertight test); the 2D edge functions then decide coverage. */

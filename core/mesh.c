@@ -135,7 +135,10 @@ static void loop_table_init(loop_table *w)
 }
 
 static rt_real loop_beta(const loop_table *w, uint32_t k) { return k < LOOP_TABLE ? w->beta[k] : beta_of(k); }
-static rt_real loop_cos(const loop_table *w, uint32_t i, uint32_t k) { return k < LOOP_TABLE ? w->cosine[k][i] : cos_step(i, k); }
+static rt_real loop_cos(const loop_table *w, uint32_t i, uint32_t k)
+{
+    return k < LOOP_TABLE ? w->cosine[k][i] : cos_step(i, k);
+}
 
 /* ---- Loop subdivision: topology ---- */
 

@@ -68,9 +68,9 @@ static uint32_t branches(const path *pa, const rt_shading_point *p, uint64_t nod
     const rt_trace_settings *set = &pa->tr->scene->camera.trace;
     uint32_t n = 0;
     if (pa->diffuse && !rt_v3_is_zero(p->kd))
-        out[n++] = make_branch(RT_RAY_DIFFUSE,
-                               rt_sample_cosine_hemisphere(rt_sample_2d(pa->sampler, node, RT_PURPOSE_DIFFUSE), p->n),
-                               p->kd);
+        out[n++] =
+            make_branch(RT_RAY_DIFFUSE,
+                        rt_sample_cosine_hemisphere(rt_sample_2d(pa->sampler, node, RT_PURPOSE_DIFFUSE), p->n), p->kd);
     /* Without caustics a diffuse bounce is followed by diffuse bounces only. */
     if (after_diffuse && !pa->caustics) return n;
     if (set->reflections && !rt_v3_is_zero(p->ks)) out[n++] = glossy(pa, p, node);
@@ -148,9 +148,9 @@ static rt_vec3 trace_path(const path *pa, const branch *from, rt_ray ray, uint32
     uint32_t n = depth < max_depth ? branches(pa, &p, node, after_diffuse, b) : 0;
     if (pa->single_branch && n > 1) n = single_branch(pa, node, b, n);
     for (uint32_t i = 0; i < n; i++) {
-        rt_vec3 incoming = trace_path(pa, &b[i], rt_ray_make(p.point, b[i].direction, RT_REAL_MAX), depth + 1,
-                                      rt_rng_child(node, b[i].kind), p.ray,
-                                      after_diffuse || b[i].kind == RT_RAY_DIFFUSE);
+        rt_vec3 incoming =
+            trace_path(pa, &b[i], rt_ray_make(p.point, b[i].direction, RT_REAL_MAX), depth + 1,
+                       rt_rng_child(node, b[i].kind), p.ray, after_diffuse || b[i].kind == RT_RAY_DIFFUSE);
         color = rt_v3_add(color, rt_v3_mul(b[i].weight, incoming));
     }
     if (rec) rec->color = color;

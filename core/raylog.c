@@ -18,10 +18,7 @@ uint32_t rt_raylog_begin(rt_ray_log *log, rt_ray_kind kind, uint32_t parent, uin
     return log->ray_count++;
 }
 
-rt_ray_record *rt_raylog_ray(rt_ray_log *log, uint32_t id)
-{
-    return log && id != RT_NO_PARENT ? &log->rays[id] : 0;
-}
+rt_ray_record *rt_raylog_ray(rt_ray_log *log, uint32_t id) { return log && id != RT_NO_PARENT ? &log->rays[id] : 0; }
 
 void rt_raylog_light(rt_ray_log *log, const rt_light_record *rec)
 {

@@ -21,9 +21,9 @@ typedef struct {
     rt_ray_kind kind;
     uint32_t parent; /* index of the ray whose hit spawned it, or RT_NO_PARENT */
     uint32_t depth;
-    uint32_t light;  /* shadow rays: the light they test; on_light: the light seen */
-    rt_ray ray;      /* on_light: t_max is where the ray meets the light's square */
-    bool on_light;   /* a Monte Carlo camera ray that ends on an area light's square (§12.1) */
+    uint32_t light; /* shadow rays: the light they test; on_light: the light seen */
+    rt_ray ray;     /* on_light: t_max is where the ray meets the light's square */
+    bool on_light;  /* a Monte Carlo camera ray that ends on an area light's square (§12.1) */
     /* Glossy rays: the sampled half vector, and whether the direction about it fell
      * below the surface, so that the ray took the mirror direction instead. */
     rt_vec3 half_vector;
@@ -34,7 +34,7 @@ typedef struct {
     rt_vec3 normal_used; /* the shading normal turned towards the viewer */
     bool entering;       /* the viewer is on the shading normal's side */
     bool total_internal_reflection;
-    rt_vec3 emissive;    /* k_e at the hit */
+    rt_vec3 emissive; /* k_e at the hit */
     /* Shadow rays: the transmittance of the surface crossed (0 for opaque mode). */
     rt_vec3 transmittance;
     /* What the ray brings back: its colour (shadow rays: the attenuation so far; on_light:
@@ -44,16 +44,16 @@ typedef struct {
 
 /* The terms of one light at one surface hit (format §9). */
 typedef struct {
-    uint32_t ray;   /* the ray whose hit this lights */
+    uint32_t ray; /* the ray whose hit this lights */
     uint32_t light;
-    rt_vec3 ambient;              /* k_d * ambient */
+    rt_vec3 ambient; /* k_d * ambient */
     rt_real n_dot_l, n_dot_h;
-    rt_vec3 diffuse;              /* k_d * N.L (0 when gated) */
-    rt_vec3 specular;             /* k_s * (N.H)^n_s (0 when gated) */
+    rt_vec3 diffuse;  /* k_d * N.L (0 when gated) */
+    rt_vec3 specular; /* k_s * (N.H)^n_s (0 when gated) */
     rt_real distance_attenuation;
-    rt_real light_cosine;         /* an area light's cos(theta_L) in Monte Carlo mode (§12.1); else 1 */
+    rt_real light_cosine; /* an area light's cos(theta_L) in Monte Carlo mode (§12.1); else 1 */
     rt_vec3 shadow_attenuation;
-    rt_vec3 contribution;         /* ambient + shadow * A_dist * cos_L * I_L * (diffuse + specular) */
+    rt_vec3 contribution; /* ambient + shadow * A_dist * cos_L * I_L * (diffuse + specular) */
 } rt_light_record;
 
 typedef struct {

@@ -24,7 +24,7 @@ rt_real rt_sin(rt_real radians);
 rt_real rt_cos(rt_real radians);
 rt_real rt_tan(rt_real radians);
 rt_real rt_exp(rt_real x);
-rt_real rt_log(rt_real x);             /* x > 0 */
+rt_real rt_log(rt_real x);               /* x > 0 */
 rt_real rt_pow(rt_real base, rt_real e); /* base >= 0; pow(0, e > 0) = 0 */
 rt_real rt_atan2(rt_real y, rt_real x);  /* in [-pi, pi]; atan2(0, 0) = 0 */
 rt_real rt_asin(rt_real x);              /* x in [-1, 1] */

@@ -39,7 +39,10 @@ static inline int rt_bound_grid(rt_real max_abs) { return (void)max_abs, 0; }
 static inline float rt_float_step(float f, bool up)
 {
     if (f == 0.0f) return up ? 0x1p-149f : -0x1p-149f;
-    union { float f; uint32_t u; } b = {f};
+    union {
+        float f;
+        uint32_t u;
+    } b = {f};
     b.u = (f > 0.0f) == up ? b.u + 1 : b.u - 1;
     return b.f;
 }
@@ -83,13 +86,19 @@ static inline uint8_t rt_unit_to_byte(rt_real c)
 /* The value's 64 bits, for blobs (core/blob.c); exact in both directions. */
 static inline uint64_t rt_real_to_bits(rt_real a)
 {
-    union { double d; uint64_t u; } c;
+    union {
+        double d;
+        uint64_t u;
+    } c;
     c.d = a;
     return c.u;
 }
 static inline rt_real rt_real_from_bits(uint64_t bits)
 {
-    union { double d; uint64_t u; } c;
+    union {
+        double d;
+        uint64_t u;
+    } c;
     c.u = bits;
     return c.d;
 }

@@ -196,15 +196,15 @@ rt_real rt_sqrt_mul(rt_real a, rt_real b)
 
 /* (-1)^k / (2k+1)!, k = 1..8: sin r = r + r z P(z), z = r^2; next term < 2^-63 for |r| <= pi/4. */
 static const int64_t sin_coef[8] = {
-    -INT64_C(0x0aaaaaaaaaaaaaab), INT64_C(0x0088888888888889), -INT64_C(0x0003403403403403),
-    INT64_C(0x00000b8ef1d2ab64), -INT64_C(0x0000001ae64567f5), INT64_C(0x000000002c248c27),
+    -INT64_C(0x0aaaaaaaaaaaaaab), INT64_C(0x0088888888888889),  -INT64_C(0x0003403403403403),
+    INT64_C(0x00000b8ef1d2ab64),  -INT64_C(0x0000001ae64567f5), INT64_C(0x000000002c248c27),
     -INT64_C(0x000000000035cfe8), INT64_C(0x00000000000032a6),
 };
 /* (-1)^k / (2k)!, k = 1..9: cos r = 1 + z P(z); next term < 2^-67. */
 static const int64_t cos_coef[9] = {
-    -INT64_C(0x2000000000000000), INT64_C(0x02aaaaaaaaaaaaab), -INT64_C(0x0016c16c16c16c17),
-    INT64_C(0x0000680680680680), -INT64_C(0x00000127e4fb778a), INT64_C(0x000000023ddb1dff),
-    -INT64_C(0x0000000003272e95), INT64_C(0x0000000000035cfe), -INT64_C(0x00000000000002d0),
+    -INT64_C(0x2000000000000000), INT64_C(0x02aaaaaaaaaaaaab),  -INT64_C(0x0016c16c16c16c17),
+    INT64_C(0x0000680680680680),  -INT64_C(0x00000127e4fb778a), INT64_C(0x000000023ddb1dff),
+    -INT64_C(0x0000000003272e95), INT64_C(0x0000000000035cfe),  -INT64_C(0x00000000000002d0),
 };
 
 /* P(z) by Horner, highest coefficient first. */
@@ -234,10 +234,10 @@ static unsigned reduce(uint64_t ux, int64_t *r)
     uint64_t lo, hi = rt_fx_umul128(ux, TWO_OVER_PI_HI, &lo);
     uint64_t lo2, hi2 = rt_fx_umul128(ux, TWO_OVER_PI_LO, &lo2); /* lo2 is below 2^-96: dropped */
     lo += hi2;
-    hi += lo < hi2;                       /* t * 2^96 = hi:lo */
-    unsigned q = (unsigned)(hi >> 32);    /* integer part of t (mod 4 below) */
-    uint64_t f = hi << 32 | lo >> 32;     /* first 64 fraction bits of t */
-    if (f >> 63) q++;                     /* f >= 1/2: use f - 1 */
+    hi += lo < hi2;                    /* t * 2^96 = hi:lo */
+    unsigned q = (unsigned)(hi >> 32); /* integer part of t (mod 4 below) */
+    uint64_t f = hi << 32 | lo >> 32;  /* first 64 fraction bits of t */
+    if (f >> 63) q++;                  /* f >= 1/2: use f - 1 */
     *r = mulq(to_signed(f), PIO2_Q62, 64);
     return q & 3;
 }
@@ -291,32 +291,30 @@ rt_real rt_tan(rt_real x)
 
 /* 1/n!, n = 1..15: exp r = 1 + r P(r); next term < 2^-64 for |r| <= ln2/2. */
 static const int64_t exp_coef[15] = {
-    INT64_C(0x4000000000000000), INT64_C(0x2000000000000000), INT64_C(0x0aaaaaaaaaaaaaab),
-    INT64_C(0x02aaaaaaaaaaaaab), INT64_C(0x0088888888888889), INT64_C(0x0016c16c16c16c17),
-    INT64_C(0x0003403403403403), INT64_C(0x0000680680680680), INT64_C(0x00000b8ef1d2ab64),
-    INT64_C(0x00000127e4fb778a), INT64_C(0x0000001ae64567f5), INT64_C(0x000000023ddb1dff),
+    INT64_C(0x4000000000000000), INT64_C(0x2000000000000000), INT64_C(0x0aaaaaaaaaaaaaab), INT64_C(0x02aaaaaaaaaaaaab),
+    INT64_C(0x0088888888888889), INT64_C(0x0016c16c16c16c17), INT64_C(0x0003403403403403), INT64_C(0x0000680680680680),
+    INT64_C(0x00000b8ef1d2ab64), INT64_C(0x00000127e4fb778a), INT64_C(0x0000001ae64567f5), INT64_C(0x000000023ddb1dff),
     INT64_C(0x000000002c248c27), INT64_C(0x0000000003272e95), INT64_C(0x000000000035cfe8),
 };
 /* 1/(2k+1), k = 0..11: atanh s = s P(s^2); next term < 2^-67 for |s| <= 0.1716. */
 static const int64_t atanh_coef[12] = {
-    INT64_C(0x4000000000000000), INT64_C(0x1555555555555555), INT64_C(0x0ccccccccccccccd),
-    INT64_C(0x0924924924924925), INT64_C(0x071c71c71c71c71c), INT64_C(0x05d1745d1745d174),
-    INT64_C(0x04ec4ec4ec4ec4ec), INT64_C(0x0444444444444444), INT64_C(0x03c3c3c3c3c3c3c4),
-    INT64_C(0x035e50d79435e50d), INT64_C(0x030c30c30c30c30c), INT64_C(0x02c8590b21642c86),
+    INT64_C(0x4000000000000000), INT64_C(0x1555555555555555), INT64_C(0x0ccccccccccccccd), INT64_C(0x0924924924924925),
+    INT64_C(0x071c71c71c71c71c), INT64_C(0x05d1745d1745d174), INT64_C(0x04ec4ec4ec4ec4ec), INT64_C(0x0444444444444444),
+    INT64_C(0x03c3c3c3c3c3c3c4), INT64_C(0x035e50d79435e50d), INT64_C(0x030c30c30c30c30c), INT64_C(0x02c8590b21642c86),
 };
 
 /* exp(y) for y in Q58, as Q32.32. y = k ln2 + r, |r| <= ln2/2 (+2^-58), then
  * exp(r) * 2^k with one rounding. */
 static rt_real exp_q58(int64_t y)
 {
-    if (y > INT64_C(22) << 58) return RT_REAL_MAX;      /* e^22 > 2^31 */
-    if (y < -(INT64_C(23) << 58)) return RT_ZERO;       /* e^-23 < 2^-33 */
+    if (y > INT64_C(22) << 58) return RT_REAL_MAX; /* e^22 > 2^31 */
+    if (y < -(INT64_C(23) << 58)) return RT_ZERO;  /* e^-23 < 2^-33 */
     int k = (int)shift_round(mulq(y, INV_LN2_Q62, 62), 58);
     /* y * 16 and k * LN2_Q62 may wrap in uint64, but their difference is r, small and exact. */
     int64_t r = to_signed((uint64_t)y * 16u - (uint64_t)k * (uint64_t)LN2_Q62) - mulq(k, LN2_LO, 64);
     int64_t e = Q62_ONE + mulq(r, horner(exp_coef, 15, r), 62); /* in [0.7, 1.42] */
-    int s = 30 - k;                                            /* Q62 * 2^k -> Q32.32 */
-    if (s > 0) return shift_round(e, (unsigned)s);             /* k >= -33, so s <= 63 */
+    int s = 30 - k;                                             /* Q62 * 2^k -> Q32.32 */
+    if (s > 0) return shift_round(e, (unsigned)s);              /* k >= -33, so s <= 63 */
     return e > INT64_MAX >> -s ? RT_REAL_MAX : e << -s;
 }
 
@@ -333,8 +331,8 @@ rt_real rt_exp(rt_real x)
  * [sqrt(1/2), sqrt(2)), and log m = 2 atanh((m - 1)/(m + 1)). */
 static int64_t log_q58(uint64_t ux)
 {
-    int lz = __builtin_clzll(ux);  /* >= 1: ux < 2^63 */
-    uint64_t m = ux << (lz - 1);   /* m / 2^62 in [1, 2), exact */
+    int lz = __builtin_clzll(ux); /* >= 1: ux < 2^63 */
+    uint64_t m = ux << (lz - 1);  /* m / 2^62 in [1, 2), exact */
     int e = 31 - lz;
     uint64_t c = Q62_ONE;
     if (m >= SQRT2_Q62) { /* log m = ln 2 + log(m / 2); (m/2 - 1)/(m/2 + 1) = (m - 2)/(m + 2) */
@@ -343,8 +341,8 @@ static int64_t log_q58(uint64_t ux)
     }
     bool neg = m < c;
     int64_t s = rt_fx_signed(rt_fx_div_round(neg ? c - m : m - c, 62, m + c), neg); /* m + c < 2^64 */
-    int64_t half_log = mulq(s, horner(atanh_coef, 12, mulq(s, s, 62)), 62); /* atanh s */
-    return e * LN2_Q58 + shift_round(half_log, 3); /* 2 atanh s in Q58 */
+    int64_t half_log = mulq(s, horner(atanh_coef, 12, mulq(s, s, 62)), 62);         /* atanh s */
+    return e * LN2_Q58 + shift_round(half_log, 3);                                  /* 2 atanh s in Q58 */
 }
 
 /* Within 0.5 lsb + 2^-58 (measured: 0.500000 lsb); log(x <= 0) = -RT_REAL_MAX (the

@@ -13,10 +13,10 @@ typedef int64_t rt_real;
 #define RT_REAL_NAME "fixed"
 /* A compile-time constant from a decimal literal: round(x * 2^32), saturated. It folds
  * to an integer at compile time, so no floating-point instruction is emitted. */
-#define RT_C(x)                                                                        \
-    ((rt_real)((x) >= 2147483648.0    ? INT64_MAX                                       \
-               : (x) <= -2147483648.0 ? -INT64_MAX                                      \
-                                      : (int64_t)((x) * 4294967296.0 + ((x) < 0 ? -0.5 : 0.5))))
+#define RT_C(x)                                    \
+    ((rt_real)((x) >= 2147483648.0    ? INT64_MAX  \
+               : (x) <= -2147483648.0 ? -INT64_MAX \
+                                      : (int64_t)((x)*4294967296.0 + ((x) < 0 ? -0.5 : 0.5))))
 #define RT_ZERO ((rt_real)0)
 #define RT_ONE ((rt_real)INT64_C(0x100000000))
 #define RT_PI RT_C(3.14159265358979323846)

@@ -87,7 +87,11 @@ static rt_vec3 refine(const adaptive *a, rt_real x0, rt_real y0, rt_real size, c
 static rt_vec3 adaptive_pixel(const rt_tracer *tr, uint32_t column, uint32_t row)
 {
     const rt_camera *cam = &tr->scene->camera;
-    adaptive a = {tr, column, cam->height - 1 - row, cam->trace.min_samples_index, cam->trace.max_samples_index + 1,
+    adaptive a = {tr,
+                  column,
+                  cam->height - 1 - row,
+                  cam->trace.min_samples_index,
+                  cam->trace.max_samples_index + 1,
                   rt_mul(cam->trace.difference_threshold, cam->trace.difference_threshold)};
     if (a.min_level > a.max_level) a.min_level = a.max_level;
     rt_vec3 c[4] = {point_color(&a, RT_ZERO, RT_ZERO), point_color(&a, RT_ONE, RT_ZERO),

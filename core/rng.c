@@ -12,20 +12,14 @@ static uint64_t mix(uint64_t z)
     return z ^ (z >> 31);
 }
 
-uint64_t rt_rng_hash(uint64_t a, uint64_t b)
-{
-    return mix(mix(a + RT_RNG_GOLDEN) + b);
-}
+uint64_t rt_rng_hash(uint64_t a, uint64_t b) { return mix(mix(a + RT_RNG_GOLDEN) + b); }
 
 uint64_t rt_rng_pixel_key(uint32_t column, uint32_t row)
 {
     return rt_rng_hash(0x72746b, ((uint64_t)row << 32) | column);
 }
 
-uint64_t rt_rng_child(uint64_t node, uint32_t branch)
-{
-    return rt_rng_hash(node, (uint64_t)branch + 1);
-}
+uint64_t rt_rng_child(uint64_t node, uint32_t branch) { return rt_rng_hash(node, (uint64_t)branch + 1); }
 
 rt_real rt_rng_unit(uint64_t bits)
 {

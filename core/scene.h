@@ -61,7 +61,7 @@ typedef enum { RT_LIGHT_POINT, RT_LIGHT_DIRECTIONAL, RT_LIGHT_AREA } rt_light_ki
 typedef struct {
     rt_light_kind kind;
     rt_affine world;
-    rt_vec3 color;   /* directional: already multiplied by its Intensity Multiplier */
+    rt_vec3 color; /* directional: already multiplied by its Intensity Multiplier */
     rt_vec3 ambient;
     rt_real atten_const, atten_linear, atten_quad; /* point and area lights */
 } rt_light_desc;
@@ -74,11 +74,11 @@ typedef struct {
     uint32_t monte_carlo;             /* 0 off, 1 uniform random, 2 stratified random (format §12) */
     bool diffuse_reflection, caustics, random_single_branching;
     rt_real focus_distance, aperture_size;
-    uint32_t sample_count_type;       /* 0 constant, 1 adaptive (recursive), 2 standard error (§11.1) */
-    uint32_t min_samples_index;       /* adaptive types: at least 4^index samples, index 0..4 */
-    uint32_t max_samples_index;       /* adaptive types: at most 4^(index+1) samples, index 0..6 */
-    rt_real difference_threshold;     /* type 1: split while corner colours differ by more */
-    rt_real std_error_threshold;      /* type 2: stop once the mean's standard error is below */
+    uint32_t sample_count_type;   /* 0 constant, 1 adaptive (recursive), 2 standard error (§11.1) */
+    uint32_t min_samples_index;   /* adaptive types: at least 4^index samples, index 0..4 */
+    uint32_t max_samples_index;   /* adaptive types: at most 4^(index+1) samples, index 0..6 */
+    rt_real difference_threshold; /* type 1: split while corner colours differ by more */
+    rt_real std_error_threshold;  /* type 2: stop once the mean's standard error is below */
 } rt_trace_settings;
 
 typedef struct {
@@ -192,8 +192,8 @@ typedef struct {
 /* What went wrong in rt_scene_build, for the platform to report. */
 typedef struct {
     rt_status status;
-    const char *what;  /* a short phrase: "transform is singular", ... */
-    uint32_t object;   /* the offending object (or light) index, or UINT32_MAX */
+    const char *what; /* a short phrase: "transform is singular", ... */
+    uint32_t object;  /* the offending object (or light) index, or UINT32_MAX */
 } rt_build_error;
 
 /* Copies desc into the arena, transforms meshes to world space, subdivides, builds the

@@ -44,7 +44,8 @@ static rt_status copy_materials(const rt_scene_desc *d, rt_arena *arena, rt_scen
         for (int c = 0; c < 4; c++) {
             if (ch[c]->texture != RT_NO_TEXTURE && ch[c]->texture >= d->texture_count)
                 return fail(err, RT_ERR_INVALID, "a material names a texture that does not exist", UINT32_MAX);
-            if (!vec_is_finite(ch[c]->color)) return fail(err, RT_ERR_INVALID, "a material colour is not finite", UINT32_MAX);
+            if (!vec_is_finite(ch[c]->color))
+                return fail(err, RT_ERR_INVALID, "a material colour is not finite", UINT32_MAX);
         }
         if (!rt_is_finite(m->shininess) || !rt_is_finite(m->index_of_refraction) || m->index_of_refraction <= RT_ZERO)
             return fail(err, RT_ERR_INVALID, "a shininess or index of refraction is not usable", UINT32_MAX);
@@ -87,7 +88,8 @@ static rt_status build_objects(const rt_scene_desc *d, rt_arena *arena, rt_scene
     for (uint32_t i = 0; i < d->object_count; i++) {
         const rt_object_desc *o = &d->objects[i];
         rt_object *obj = &s->objects[i];
-        if (o->material >= d->material_count) return fail(err, RT_ERR_INVALID, "object names a material that does not exist", i);
+        if (o->material >= d->material_count)
+            return fail(err, RT_ERR_INVALID, "object names a material that does not exist", i);
         if (!affine_is_finite(&o->world)) return fail(err, RT_ERR_INVALID, "transform is not finite", i);
         obj->kind = o->kind;
         obj->material = o->material;
@@ -95,7 +97,8 @@ static rt_status build_objects(const rt_scene_desc *d, rt_arena *arena, rt_scene
         obj->to_world = o->world;
         rt_affine inv;
         if (!rt_affine_inverse(&o->world, &inv))
-            return fail(err, RT_ERR_INVALID, "transform cannot be inverted (a scale of 0, or numbers too large or too small?)", i);
+            return fail(err, RT_ERR_INVALID,
+                        "transform cannot be inverted (a scale of 0, or numbers too large or too small?)", i);
         obj->to_object = inv;
         obj->normal_to_world = rt_mat3_transpose(&inv.linear);
         if (o->kind != RT_SHAPE_MESH) {
@@ -229,7 +232,8 @@ rt_status rt_scene_build(const rt_scene_desc *desc, rt_arena *arena, const rt_wo
     if (st == RT_OK) st = build_objects(desc, arena, &s, err);
     if (st == RT_OK) st = build_lights(desc, arena, &s, err);
     if (st == RT_OK) st = build_camera(&desc->camera, &s.camera, err);
-    if (st == RT_OK && rt_bvh_build(&s, arena, workers) != RT_OK) st = fail(err, RT_ERR_NOMEM, "out of memory for the BVH", UINT32_MAX);
+    if (st == RT_OK && rt_bvh_build(&s, arena, workers) != RT_OK)
+        st = fail(err, RT_ERR_NOMEM, "out of memory for the BVH", UINT32_MAX);
     if (st == RT_OK) *out = s;
     return st;
 }

@@ -197,8 +197,10 @@ uint32_t rt_scene_triangle_object(const rt_scene *scene, uint32_t triangle)
     uint32_t lo = 0, hi = scene->mesh_object_count;
     while (hi - lo > 1) {
         uint32_t mid = lo + (hi - lo) / 2;
-        if (scene->objects[scene->mesh_objects[mid]].first_triangle <= triangle) lo = mid;
-        else hi = mid;
+        if (scene->objects[scene->mesh_objects[mid]].first_triangle <= triangle)
+            lo = mid;
+        else
+            hi = mid;
     }
     return scene->mesh_objects[lo];
 }

@@ -7,7 +7,7 @@
 
 typedef struct {
     uint32_t state[8];
-    uint64_t length;     /* bytes hashed so far */
+    uint64_t length; /* bytes hashed so far */
     uint8_t block[64];
     uint32_t block_used;
 } rt_sha256;

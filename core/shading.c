@@ -12,7 +12,7 @@ bool rt_shading_nearest(const rt_tracer *tr, const rt_ray *ray, rt_scene_hit *hi
 }
 
 bool rt_shading_hit(const rt_tracer *tr, const rt_ray *ray, rt_ray_kind kind, uint32_t parent, uint32_t depth,
-                  rt_shading_point *p)
+                    rt_shading_point *p)
 {
     const rt_scene *scene = tr->scene;
     p->ray = rt_raylog_begin(tr->log, kind, parent, depth, ray);
@@ -101,12 +101,12 @@ static rt_real distance_attenuation(const rt_light *l, rt_real r)
 }
 
 rt_vec3 rt_shading_light(const rt_tracer *tr, uint32_t index, const rt_shading_point *p, rt_vec3 position,
-                       bool lambertian)
+                         bool lambertian)
 {
     const rt_light *l = &tr->scene->lights[index];
     rt_vec3 black = rt_v3(RT_ZERO, RT_ZERO, RT_ZERO);
-    rt_light_record rec = {p->ray, index, rt_v3_mul(p->kd, l->ambient), RT_ZERO, RT_ZERO, black, black, RT_ONE,
-                           RT_ONE, rt_v3(RT_ONE, RT_ONE, RT_ONE), black};
+    rt_light_record rec = {p->ray, index,  rt_v3_mul(p->kd, l->ambient),  RT_ZERO, RT_ZERO, black, black,
+                           RT_ONE, RT_ONE, rt_v3(RT_ONE, RT_ONE, RT_ONE), black};
     rec.contribution = rec.ambient;
     rt_vec3 to_light;
     rt_real distance;
@@ -148,8 +148,8 @@ rt_vec3 rt_shading_mirror(const rt_shading_point *p)
 
 bool rt_shading_refraction(const rt_shading_point *p, rt_vec3 *out)
 {
-    rt_real eta = p->entering ? rt_div(RT_AIR_INDEX, p->index_of_refraction)
-                              : rt_div(p->index_of_refraction, RT_AIR_INDEX);
+    rt_real eta =
+        p->entering ? rt_div(RT_AIR_INDEX, p->index_of_refraction) : rt_div(p->index_of_refraction, RT_AIR_INDEX);
     /* Snell's law with n facing v (format §10.3). */
     rt_real cos_i = rt_v3_dot(p->n, p->v);
     rt_real k = rt_sub(RT_ONE, rt_mul(rt_mul(eta, eta), rt_sub(RT_ONE, rt_mul(cos_i, cos_i))));

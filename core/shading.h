@@ -20,7 +20,7 @@ bool rt_shading_nearest(const rt_tracer *tr, const rt_ray *ray, rt_scene_hit *hi
 /* Traces ray (recorded in the log as `kind`, spawned by ray `parent`) to its nearest
  * hit and fills p with the frame and material values there; false on a miss. */
 bool rt_shading_hit(const rt_tracer *tr, const rt_ray *ray, rt_ray_kind kind, uint32_t parent, uint32_t depth,
-                  rt_shading_point *p);
+                    rt_shading_point *p);
 
 /* Ambient plus the shadowed Blinn-Phong term of light `index` as if it sat at
  * `position` (point and area lights; directional lights use their direction).
@@ -28,7 +28,7 @@ bool rt_shading_hit(const rt_tracer *tr, const rt_ray *ray, rt_ray_kind kind, ui
  * term is multiplied by the cosine at the light, and points behind it get the
  * ambient term only. */
 rt_vec3 rt_shading_light(const rt_tracer *tr, uint32_t index, const rt_shading_point *p, rt_vec3 position,
-                       bool lambertian);
+                         bool lambertian);
 
 /* The mirror direction of the view vector about the shading normal. */
 rt_vec3 rt_shading_mirror(const rt_shading_point *p);

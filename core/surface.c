@@ -1,7 +1,11 @@
 /* Hit-point attributes and material lookups; see surface.h. */
 #include "surface.h"
 
-static rt_vec2 v2(rt_real u, rt_real v) { rt_vec2 r = {u, v}; return r; }
+static rt_vec2 v2(rt_real u, rt_real v)
+{
+    rt_vec2 r = {u, v};
+    return r;
+}
 
 static rt_surface triangle_surface(const rt_scene *scene, const rt_scene_hit *hit, rt_surface s)
 {
@@ -60,8 +64,10 @@ rt_surface rt_surface_at(const rt_scene *scene, const rt_ray *ray, const rt_scen
 {
     rt_surface s;
     s.point = rt_v3_madd(ray->origin, ray->direction, hit->hit.t);
-    if (hit->prim < scene->triangle_count) s = triangle_surface(scene, hit, s);
-    else s = quadric_surface(scene, ray, hit, s);
+    if (hit->prim < scene->triangle_count)
+        s = triangle_surface(scene, hit, s);
+    else
+        s = quadric_surface(scene, ray, hit, s);
     s.material = scene->objects[s.object].material;
     return s;
 }

@@ -24,7 +24,8 @@ static rt_vec3 trace_ray(const rt_tracer *tr, rt_ray ray, uint32_t depth, rt_ray
     if (set->refractions && !rt_v3_is_zero(p.kt)) {
         rt_vec3 t;
         if (rt_shading_refraction(&p, &t)) {
-            rt_vec3 transmitted = trace_ray(tr, rt_ray_make(p.point, t, RT_REAL_MAX), depth + 1, RT_RAY_REFRACTION, p.ray);
+            rt_vec3 transmitted =
+                trace_ray(tr, rt_ray_make(p.point, t, RT_REAL_MAX), depth + 1, RT_RAY_REFRACTION, p.ray);
             color = rt_v3_add(color, rt_v3_mul(p.kt, transmitted));
         } else if ((rec = rt_raylog_ray(tr->log, p.ray)) != 0) {
             rec->total_internal_reflection = true;

@@ -48,8 +48,8 @@ bool rt_mat3_inverse(const rt_mat3 *a, rt_mat3 *out)
     adj.m[2][0] = cofactor(&b, 1, 2, 0, 1);
     adj.m[2][1] = rt_neg(cofactor(&b, 0, 2, 0, 1));
     adj.m[2][2] = cofactor(&b, 0, 1, 0, 1);
-    rt_real det = rt_add(rt_add(rt_mul(b.m[0][0], adj.m[0][0]), rt_mul(b.m[0][1], adj.m[1][0])),
-                         rt_mul(b.m[0][2], adj.m[2][0]));
+    rt_real det =
+        rt_add(rt_add(rt_mul(b.m[0][0], adj.m[0][0]), rt_mul(b.m[0][1], adj.m[1][0])), rt_mul(b.m[0][2], adj.m[2][0]));
     if (det == RT_ZERO || !rt_is_finite(det)) return false;
     rt_real inv_det = rt_div(RT_ONE, det);
     for (int i = 0; i < 3; i++)

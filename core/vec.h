@@ -6,26 +6,53 @@
 
 #include "real.h"
 
-typedef struct { rt_real x, y, z; } rt_vec3;
-typedef struct { rt_real u, v; } rt_vec2;
+typedef struct {
+    rt_real x, y, z;
+} rt_vec3;
+typedef struct {
+    rt_real u, v;
+} rt_vec2;
 /* Row-major 3x3 matrix. */
-typedef struct { rt_real m[3][3]; } rt_mat3;
+typedef struct {
+    rt_real m[3][3];
+} rt_mat3;
 /* Affine transform p' = linear * p + translation (the bottom row is always 0 0 0 1). */
-typedef struct { rt_mat3 linear; rt_vec3 translation; } rt_affine;
+typedef struct {
+    rt_mat3 linear;
+    rt_vec3 translation;
+} rt_affine;
 
-static inline rt_vec3 rt_v3(rt_real x, rt_real y, rt_real z) { rt_vec3 r = {x, y, z}; return r; }
-static inline rt_vec3 rt_v3_add(rt_vec3 a, rt_vec3 b) { return rt_v3(rt_add(a.x, b.x), rt_add(a.y, b.y), rt_add(a.z, b.z)); }
-static inline rt_vec3 rt_v3_sub(rt_vec3 a, rt_vec3 b) { return rt_v3(rt_sub(a.x, b.x), rt_sub(a.y, b.y), rt_sub(a.z, b.z)); }
-static inline rt_vec3 rt_v3_mul(rt_vec3 a, rt_vec3 b) { return rt_v3(rt_mul(a.x, b.x), rt_mul(a.y, b.y), rt_mul(a.z, b.z)); }
-static inline rt_vec3 rt_v3_scale(rt_vec3 a, rt_real s) { return rt_v3(rt_mul(a.x, s), rt_mul(a.y, s), rt_mul(a.z, s)); }
+static inline rt_vec3 rt_v3(rt_real x, rt_real y, rt_real z)
+{
+    rt_vec3 r = {x, y, z};
+    return r;
+}
+static inline rt_vec3 rt_v3_add(rt_vec3 a, rt_vec3 b)
+{
+    return rt_v3(rt_add(a.x, b.x), rt_add(a.y, b.y), rt_add(a.z, b.z));
+}
+static inline rt_vec3 rt_v3_sub(rt_vec3 a, rt_vec3 b)
+{
+    return rt_v3(rt_sub(a.x, b.x), rt_sub(a.y, b.y), rt_sub(a.z, b.z));
+}
+static inline rt_vec3 rt_v3_mul(rt_vec3 a, rt_vec3 b)
+{
+    return rt_v3(rt_mul(a.x, b.x), rt_mul(a.y, b.y), rt_mul(a.z, b.z));
+}
+static inline rt_vec3 rt_v3_scale(rt_vec3 a, rt_real s)
+{
+    return rt_v3(rt_mul(a.x, s), rt_mul(a.y, s), rt_mul(a.z, s));
+}
 static inline rt_vec3 rt_v3_neg(rt_vec3 a) { return rt_v3(rt_neg(a.x), rt_neg(a.y), rt_neg(a.z)); }
 /* a + b * s, the common "point along a ray" step. */
 static inline rt_vec3 rt_v3_madd(rt_vec3 a, rt_vec3 b, rt_real s) { return rt_v3_add(a, rt_v3_scale(b, s)); }
-static inline rt_real rt_v3_dot(rt_vec3 a, rt_vec3 b) { return rt_add(rt_add(rt_mul(a.x, b.x), rt_mul(a.y, b.y)), rt_mul(a.z, b.z)); }
+static inline rt_real rt_v3_dot(rt_vec3 a, rt_vec3 b)
+{
+    return rt_add(rt_add(rt_mul(a.x, b.x), rt_mul(a.y, b.y)), rt_mul(a.z, b.z));
+}
 static inline rt_vec3 rt_v3_cross(rt_vec3 a, rt_vec3 b)
 {
-    return rt_v3(rt_sub(rt_mul(a.y, b.z), rt_mul(a.z, b.y)),
-                 rt_sub(rt_mul(a.z, b.x), rt_mul(a.x, b.z)),
+    return rt_v3(rt_sub(rt_mul(a.y, b.z), rt_mul(a.z, b.y)), rt_sub(rt_mul(a.z, b.x), rt_mul(a.x, b.z)),
                  rt_sub(rt_mul(a.x, b.y), rt_mul(a.y, b.x)));
 }
 /* The k for which m 16^k lies in [1/2, top), or 0 for a zero, infinite or NaN m
@@ -69,8 +96,14 @@ static inline rt_vec3 rt_v3_normalize(rt_vec3 a)
 }
 static inline rt_real rt_v3_get(rt_vec3 a, int axis) { return axis == 0 ? a.x : axis == 1 ? a.y : a.z; }
 static inline bool rt_v3_is_zero(rt_vec3 a) { return a.x == RT_ZERO && a.y == RT_ZERO && a.z == RT_ZERO; }
-static inline rt_vec3 rt_v3_min(rt_vec3 a, rt_vec3 b) { return rt_v3(rt_min(a.x, b.x), rt_min(a.y, b.y), rt_min(a.z, b.z)); }
-static inline rt_vec3 rt_v3_max(rt_vec3 a, rt_vec3 b) { return rt_v3(rt_max(a.x, b.x), rt_max(a.y, b.y), rt_max(a.z, b.z)); }
+static inline rt_vec3 rt_v3_min(rt_vec3 a, rt_vec3 b)
+{
+    return rt_v3(rt_min(a.x, b.x), rt_min(a.y, b.y), rt_min(a.z, b.z));
+}
+static inline rt_vec3 rt_v3_max(rt_vec3 a, rt_vec3 b)
+{
+    return rt_v3(rt_max(a.x, b.x), rt_max(a.y, b.y), rt_max(a.z, b.z));
+}
 
 static inline rt_vec3 rt_mat3_apply(const rt_mat3 *m, rt_vec3 v)
 {
@@ -78,7 +111,10 @@ static inline rt_vec3 rt_mat3_apply(const rt_mat3 *m, rt_vec3 v)
                  rt_add(rt_add(rt_mul(m->m[1][0], v.x), rt_mul(m->m[1][1], v.y)), rt_mul(m->m[1][2], v.z)),
                  rt_add(rt_add(rt_mul(m->m[2][0], v.x), rt_mul(m->m[2][1], v.y)), rt_mul(m->m[2][2], v.z)));
 }
-static inline rt_vec3 rt_affine_point(const rt_affine *a, rt_vec3 p) { return rt_v3_add(rt_mat3_apply(&a->linear, p), a->translation); }
+static inline rt_vec3 rt_affine_point(const rt_affine *a, rt_vec3 p)
+{
+    return rt_v3_add(rt_mat3_apply(&a->linear, p), a->translation);
+}
 static inline rt_vec3 rt_affine_vector(const rt_affine *a, rt_vec3 v) { return rt_mat3_apply(&a->linear, v); }
 
 rt_mat3 rt_mat3_mul(const rt_mat3 *a, const rt_mat3 *b);

@@ -22,10 +22,7 @@ uint32_t fz_below(fz_bytes *in, uint32_t n) { return fz_u16(in) % n; }
 
 double fz_range(fz_bytes *in, double lo, double hi) { return lo + (hi - lo) * (fz_u16(in) / 65535.0); }
 
-double fz_pow2(fz_bytes *in, double lo, double hi)
-{
-    return exp2(floor(fz_range(in, lo, hi) * 16.0) / 16.0);
-}
+double fz_pow2(fz_bytes *in, double lo, double hi) { return exp2(floor(fz_range(in, lo, hi) * 16.0) / 16.0); }
 
 rt_vec3 fz_vec_range(fz_bytes *in, double lo, double hi)
 {

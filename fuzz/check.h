@@ -3,8 +3,8 @@
 #ifndef FZ_CHECK_H
 #define FZ_CHECK_H
 
-#define FZ_CHECK(cond, ...) \
-    do { \
+#define FZ_CHECK(cond, ...)                                           \
+    do {                                                              \
         if (!(cond)) fz_fail(__FILE__, __LINE__, #cond, __VA_ARGS__); \
     } while (0)
 

@@ -25,10 +25,11 @@ rt_camera_desc fz_camera(void)
 
 void fz_scene_one(rt_scene *out, rt_shape_kind kind, const rt_mesh_desc *mesh, rt_affine world)
 {
-    static const rt_material material = {
-        .diffuse = {.texture = RT_NO_TEXTURE}, .specular = {.texture = RT_NO_TEXTURE},
-        .emissive = {.texture = RT_NO_TEXTURE}, .transmittance = {.texture = RT_NO_TEXTURE},
-        .index_of_refraction = RT_C(1.0)};
+    static const rt_material material = {.diffuse = {.texture = RT_NO_TEXTURE},
+                                         .specular = {.texture = RT_NO_TEXTURE},
+                                         .emissive = {.texture = RT_NO_TEXTURE},
+                                         .transmittance = {.texture = RT_NO_TEXTURE},
+                                         .index_of_refraction = RT_C(1.0)};
     rt_object_desc object = {.kind = kind, .world = world};
     rt_scene_desc desc = {0};
     desc.materials = &material;
@@ -74,7 +75,8 @@ rt_ray fz_ray_axis(fz_bytes *in, rt_vec3 target)
     uint8_t k = fz_u8(in);
     rt_real sign = k & 1 ? RT_ONE : rt_neg(RT_ONE);
     rt_ray ray;
-    ray.direction = rt_v3(k / 2 % 3 == 0 ? sign : RT_ZERO, k / 2 % 3 == 1 ? sign : RT_ZERO, k / 2 % 3 == 2 ? sign : RT_ZERO);
+    ray.direction =
+        rt_v3(k / 2 % 3 == 0 ? sign : RT_ZERO, k / 2 % 3 == 1 ? sign : RT_ZERO, k / 2 % 3 == 2 ? sign : RT_ZERO);
     ray.origin = rt_v3_madd(target, ray.direction, rt_neg(rt_from_int(1 << fz_below(in, 8))));
     fz_ray_interval(in, &ray);
     return ray;

@@ -13,14 +13,16 @@
 static void check_hit(const rt_scene *scene, const rt_ray *ray, const rt_scene_hit *hit, long double lo, long double hi)
 {
     fz_check_t(hit->hit.t, ray->t_min, ray->t_max);
-    FZ_CHECK(hit->hit.b1 >= RT_ZERO && hit->hit.b2 >= RT_ZERO && rt_to_double(hit->hit.b1) + rt_to_double(hit->hit.b2) <= 1 + 4 * FZ_EPS,
+    FZ_CHECK(hit->hit.b1 >= RT_ZERO && hit->hit.b2 >= RT_ZERO &&
+                 rt_to_double(hit->hit.b1) + rt_to_double(hit->hit.b2) <= 1 + 4 * FZ_EPS,
              "barycentrics %.17g, %.17g outside the triangle", rt_to_double(hit->hit.b1), rt_to_double(hit->hit.b2));
     const rt_triangle *tri = &scene->triangles[hit->prim];
     const rt_vec3 *p = scene->positions;
     fz_plane_crossing x;
     long double t = rt_to_double(hit->hit.t);
     if (fz_triangle_crossing(p[tri->v[0]], p[tri->v[1]], p[tri->v[2]], ray->origin, ray->direction, &x))
-        FZ_CHECK(t >= lo - x.tol_t && t <= hi + x.tol_t, "hit at t = %.17Lg, the box surface lies in [%.17Lg, %.17Lg]", t, lo, hi);
+        FZ_CHECK(t >= lo - x.tol_t && t <= hi + x.tol_t, "hit at t = %.17Lg, the box surface lies in [%.17Lg, %.17Lg]",
+                 t, lo, hi);
     rt_surface s = rt_surface_at(scene, ray, hit);
     fz_check_unit(s.normal, "cube normal");
     fz_check_unit(s.geometric_normal, "cube geometric normal");
@@ -59,9 +61,12 @@ static void check_ray(const rt_scene *scene, rt_ray ray)
     bool exit = deep && shrink_in < lo - tol && shrink_out > lo + tol && grow_out < hi - tol;
     if (entry || exit) FZ_CHECK(found, "missed the box: it lies in [%.17Lg, %.17Lg] along the ray", grow_in, grow_out);
     if (!found) return;
-    if (entry) check_hit(scene, &ray, &hit, grow_in, shrink_in);
-    else if (exit) check_hit(scene, &ray, &hit, shrink_out, grow_out);
-    else check_hit(scene, &ray, &hit, grow_in, grow_out);
+    if (entry)
+        check_hit(scene, &ray, &hit, grow_in, shrink_in);
+    else if (exit)
+        check_hit(scene, &ray, &hit, shrink_out, grow_out);
+    else
+        check_hit(scene, &ray, &hit, grow_in, grow_out);
 }
 
 /* A point on the cube's boundary in object space, exact: on one of its 12 edges, 8
@@ -72,7 +77,7 @@ static rt_vec3 edge_point(fz_bytes *in)
     for (int k = 0; k < 3; k++) c[k] = fz_u8(in) % 2 ? RT_C(0.5) : RT_C(-0.5);
     rt_real u = rt_from_double(fz_range(in, -0.5, 0.5));
     uint8_t kind = fz_u8(in) % 3, axis = fz_u8(in) % 3;
-    if (kind == 1) c[axis] = u;                                      /* along an edge */
+    if (kind == 1) c[axis] = u;                                                        /* along an edge */
     if (kind == 2) c[(axis + 1) % 3] = c[(axis + 2) % 3] == RT_C(0.5) ? u : rt_neg(u); /* face diagonal */
     return rt_v3(c[0], c[1], c[2]);
 }

@@ -7,11 +7,11 @@
 #include <math.h>
 #include <string.h>
 
-#include "check.h"
 #include "bvh.h"
+#include "check.h"
 #include "fixture.h"
-#include "scene_query.h"
 #include "oracle.h"
+#include "scene_query.h"
 
 #define MAX_TRIANGLES 48
 #define MAX_QUADRICS 16
@@ -60,7 +60,8 @@ static void check_tree(const rt_scene *s)
             rt_aabb box = rt_bvh_child_box(bvh, n, c);
             uint32_t first = n->child[c], count = n->count[c];
             if (count == 0) {
-                FZ_CHECK(first > i && first < bvh->node_count && !parents[first]++, "node %u slot %d: child %u", i, c, first);
+                FZ_CHECK(first > i && first < bvh->node_count && !parents[first]++, "node %u slot %d: child %u", i, c,
+                         first);
                 for (int g = 0; g < RT_BVH_WIDTH && bvh->nodes[first].count[g] != RT_BVH_NO_CHILD; g++) {
                     rt_aabb inner = rt_bvh_child_box(bvh, &bvh->nodes[first], g);
                     FZ_CHECK(box_inside(&inner, &box), "node %u slot %d pokes out of node %u slot %d", first, g, i, c);
@@ -115,8 +116,8 @@ static void check_ray(const rt_scene *s, rt_ray ray)
     /* The documented tie rule: no lower reference hits at the same t. */
     for (uint32_t p = 0; p < a.prim; p++) {
         rt_prim_hit h;
-        FZ_CHECK(!rt_scene_prim_intersect(s, p, &rs, &h) || h.t != a.hit.t, "primitive %u ties with %u at t = %.17g and is lower", p,
-                 a.prim, rt_to_double(a.hit.t));
+        FZ_CHECK(!rt_scene_prim_intersect(s, p, &rs, &h) || h.t != a.hit.t,
+                 "primitive %u ties with %u at t = %.17g and is lower", p, a.prim, rt_to_double(a.hit.t));
     }
 }
 
@@ -136,14 +137,18 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         idx[i] = i;
         uint8_t how = fz_u8(&in);
         /* Repeats make exact ties: a whole triangle again, or a shared vertex. */
-        if (i >= 3 && how % 8 == 0) pos[i] = pos[i - 3];
-        else if (i >= 1 && how % 8 == 1) pos[i] = pos[fz_below(&in, i)];
-        else pos[i] = point(&in, mode, range);
+        if (i >= 3 && how % 8 == 0)
+            pos[i] = pos[i - 3];
+        else if (i >= 1 && how % 8 == 1)
+            pos[i] = pos[fz_below(&in, i)];
+        else
+            pos[i] = point(&in, mode, range);
     }
-    static const rt_material material = {
-        .diffuse = {.texture = RT_NO_TEXTURE}, .specular = {.texture = RT_NO_TEXTURE},
-        .emissive = {.texture = RT_NO_TEXTURE}, .transmittance = {.texture = RT_NO_TEXTURE},
-        .index_of_refraction = RT_C(1.0)};
+    static const rt_material material = {.diffuse = {.texture = RT_NO_TEXTURE},
+                                         .specular = {.texture = RT_NO_TEXTURE},
+                                         .emissive = {.texture = RT_NO_TEXTURE},
+                                         .transmittance = {.texture = RT_NO_TEXTURE},
+                                         .index_of_refraction = RT_C(1.0)};
     rt_mesh_desc mesh = {pos, NULL, NULL, 3 * n_tri, idx, n_tri};
     rt_object_desc objects[1 + MAX_QUADRICS] = {{.kind = RT_SHAPE_MESH, .world = rt_affine_identity()}};
     for (uint32_t i = 1; i <= n_quad; i++) {

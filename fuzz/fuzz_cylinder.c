@@ -104,9 +104,9 @@ static rt_vec3 boundary_point(fz_bytes *in)
     rt_real x = rt_mul(RT_C(0.5), rt_cos(angle)), z = rt_mul(RT_C(0.5), rt_sin(angle));
     rt_real y = rt_from_double(fz_range(in, -0.5, 0.5));
     switch (fz_u8(in) % 3) {
-    case 0: return rt_v3(x, fz_u8(in) % 2 ? RT_C(0.5) : RT_C(-0.5), z);   /* rim */
-    case 1: return rt_v3(rt_mul(x, y), RT_C(0.5), rt_mul(z, y));            /* top cap */
-    default: return rt_v3(x, y, z);                                        /* side */
+    case 0: return rt_v3(x, fz_u8(in) % 2 ? RT_C(0.5) : RT_C(-0.5), z); /* rim */
+    case 1: return rt_v3(rt_mul(x, y), RT_C(0.5), rt_mul(z, y));        /* top cap */
+    default: return rt_v3(x, y, z);                                     /* side */
     }
 }
 
@@ -124,9 +124,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     while (in.pos < in.size) {
         uint8_t kind = fz_u8(&in);
         rt_ray ray;
-        if (kind % 4 == 0) ray = fz_ray_free(&in, 24);
-        else if (kind % 4 == 3) ray = fz_ray_through(&in, rt_affine_point(world, boundary_point(&in)));
-        else ray = fz_ray_through(&in, rt_affine_point(world, fz_vec_range(&in, -0.3, 0.3)));
+        if (kind % 4 == 0)
+            ray = fz_ray_free(&in, 24);
+        else if (kind % 4 == 3)
+            ray = fz_ray_through(&in, rt_affine_point(world, boundary_point(&in)));
+        else
+            ray = fz_ray_through(&in, rt_affine_point(world, fz_vec_range(&in, -0.3, 0.3)));
         check_ray(&scene, ray);
     }
     return 0;

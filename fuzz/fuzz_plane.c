@@ -22,7 +22,8 @@ static void check_ray(const rt_scene *scene, rt_ray ray)
     if (found) {
         fz_check_t(hit.hit.t, ray.t_min, ray.t_max);
         FZ_CHECK(hit.prim == brute.prim && hit.hit.t == brute.hit.t, "BVH and brute force disagree on the hit");
-        FZ_CHECK(hit.hit.b1 >= RT_ZERO && hit.hit.b2 >= RT_ZERO && rt_to_double(hit.hit.b1) + rt_to_double(hit.hit.b2) <= 1 + 4 * FZ_EPS,
+        FZ_CHECK(hit.hit.b1 >= RT_ZERO && hit.hit.b2 >= RT_ZERO &&
+                     rt_to_double(hit.hit.b1) + rt_to_double(hit.hit.b2) <= 1 + 4 * FZ_EPS,
                  "barycentrics %.17g, %.17g outside the triangle", rt_to_double(hit.hit.b1), rt_to_double(hit.hit.b2));
         rt_surface s = rt_surface_at(scene, &ray, &hit);
         fz_check_unit(s.normal, "plane normal");
@@ -59,8 +60,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             /* Kind 1: anywhere on the square (and a little beyond); else on the shared
              * diagonal from (-0.5, -0.5) to (0.5, 0.5), exact in object space. */
             rt_real u = rt_from_double(fz_range(&in, -0.55, 0.55));
-            rt_vec3 q = kind == 1 ? rt_v3(u, rt_from_double(fz_range(&in, -0.55, 0.55)), RT_ZERO) : rt_v3(u, u, RT_ZERO);
-            ray = fz_u8(&in) % 2 ? fz_ray_through(&in, rt_affine_point(world, q)) : fz_ray_axis(&in, rt_affine_point(world, q));
+            rt_vec3 q =
+                kind == 1 ? rt_v3(u, rt_from_double(fz_range(&in, -0.55, 0.55)), RT_ZERO) : rt_v3(u, u, RT_ZERO);
+            ray = fz_u8(&in) % 2 ? fz_ray_through(&in, rt_affine_point(world, q))
+                                 : fz_ray_axis(&in, rt_affine_point(world, q));
         }
         check_ray(&scene, ray);
     }

@@ -3,8 +3,8 @@
  * whose indices are in range (rt_scene_build then reads all of it under ASan). */
 #include "check.h"
 #include "fixture.h"
-#include "oracle.h"
 #include "load/ply.h"
+#include "oracle.h"
 #include "scratch.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
@@ -18,10 +18,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     for (uint32_t i = 0; i < 3 * mesh.triangle_count; i++)
         FZ_CHECK(mesh.indices[i] < mesh.vertex_count, "index %u of %u vertices", mesh.indices[i], mesh.vertex_count);
-    for (uint32_t v = 0; v < mesh.vertex_count; v++) FZ_CHECK(fz_finite3(mesh.positions[v]), "vertex %u is not finite", v);
+    for (uint32_t v = 0; v < mesh.vertex_count; v++)
+        FZ_CHECK(fz_finite3(mesh.positions[v]), "vertex %u is not finite", v);
     rt_mesh_desc view = rtp_ply_view(&mesh);
     rt_scene scene;
-    if (mesh.triangle_count > 0 && mesh.triangle_count < 4096 && mesh.vertex_count < 4096) fz_scene_one(&scene, RT_SHAPE_MESH, &view, rt_affine_identity());
+    if (mesh.triangle_count > 0 && mesh.triangle_count < 4096 && mesh.vertex_count < 4096)
+        fz_scene_one(&scene, RT_SHAPE_MESH, &view, rt_affine_identity());
     rtp_ply_free(&mesh);
     return 0;
 }

@@ -98,7 +98,8 @@ static void describe(source *s, storage *st, rt_scene_desc *d)
         st->normals[v] = vec(s, -1, 1);
         st->uvs[v] = (rt_vec2){real(s, -1, 2), real(s, -1, 2)};
     }
-    for (uint32_t k = 0; k < 3 * free_mesh->triangle_count; k++) st->indices[k] = index_or_bad(s, free_mesh->vertex_count);
+    for (uint32_t k = 0; k < 3 * free_mesh->triangle_count; k++)
+        st->indices[k] = index_or_bad(s, free_mesh->vertex_count);
     uint8_t attributes = fz_u8(&s->in);
     free_mesh->positions = st->positions;
     free_mesh->normals = attributes & 1 ? st->normals : NULL;

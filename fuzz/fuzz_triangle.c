@@ -26,10 +26,12 @@ static void vertices(fz_bytes *in, rt_vec3 v[3])
     rt_real size = rt_from_double(fz_pow2(in, FZ_SIZE_LOG2_MIN > -8 ? FZ_SIZE_LOG2_MIN : -8, 8));
     for (int k = 0; k < 3; k++) {
         rt_vec3 p = fz_vec_range(in, -1, 1);
-        if (shape & 2) p = rt_v3(rt_from_int(fz_below(in, 5)), rt_from_int(fz_below(in, 5)), rt_from_int(fz_below(in, 5)));
+        if (shape & 2)
+            p = rt_v3(rt_from_int(fz_below(in, 5)), rt_from_int(fz_below(in, 5)), rt_from_int(fz_below(in, 5)));
         v[k] = rt_v3_add(centre, rt_v3_scale(p, size));
     }
-    if (shape % 32 >= 28) v[2] = rt_v3_madd(v[0], rt_v3_sub(v[1], v[0]), rt_from_double(fz_range(in, -2, 2))); /* collinear */
+    if (shape % 32 >= 28)
+        v[2] = rt_v3_madd(v[0], rt_v3_sub(v[1], v[0]), rt_from_double(fz_range(in, -2, 2))); /* collinear */
     if (shape % 32 == 27) v[2] = v[1];
 }
 
@@ -41,7 +43,8 @@ static void check_hit(const rt_scene *scene, const rt_ray *ray, const rt_scene_h
     FZ_CHECK(h.b1 >= RT_ZERO && h.b2 >= RT_ZERO && rt_to_double(h.b1) + rt_to_double(h.b2) <= 1 + 4 * FZ_EPS,
              "barycentrics %.17g, %.17g outside the triangle", rt_to_double(h.b1), rt_to_double(h.b2));
     fz_v3l a = fz_l(p[0]), n = fz_l_cross(fz_l_sub(fz_l(p[1]), a), fz_l_sub(fz_l(p[2]), a));
-    long double l2 = fmaxl(fz_l_dot(fz_l_sub(fz_l(p[1]), a), fz_l_sub(fz_l(p[1]), a)), fz_l_dot(fz_l_sub(fz_l(p[2]), a), fz_l_sub(fz_l(p[2]), a)));
+    long double l2 = fmaxl(fz_l_dot(fz_l_sub(fz_l(p[1]), a), fz_l_sub(fz_l(p[1]), a)),
+                           fz_l_dot(fz_l_sub(fz_l(p[2]), a), fz_l_sub(fz_l(p[2]), a)));
     if (!(fz_l_dot(n, n) > 1e-12L * l2 * l2)) return; /* degenerate: no normal to speak of */
     rt_surface s = rt_surface_at(scene, ray, hit);
     fz_check_unit(s.normal, "triangle normal");
@@ -79,10 +82,14 @@ static rt_vec3 surface_point(fz_bytes *in, const rt_vec3 v[3], bool boundary)
     }
     if (boundary) {
         uint8_t which = fz_u8(in) % 6;
-        if (which == 0) u = RT_ZERO;
-        else if (which == 1) w = RT_ZERO;
-        else if (which == 2) w = rt_sub(RT_ONE, u);
-        else return v[which - 3];
+        if (which == 0)
+            u = RT_ZERO;
+        else if (which == 1)
+            w = RT_ZERO;
+        else if (which == 2)
+            w = rt_sub(RT_ONE, u);
+        else
+            return v[which - 3];
     }
     return rt_v3_add(v[0], rt_v3_add(rt_v3_scale(rt_v3_sub(v[1], v[0]), u), rt_v3_scale(rt_v3_sub(v[2], v[0]), w)));
 }

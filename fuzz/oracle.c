@@ -124,7 +124,8 @@ bool fz_triangle_crossing(rt_vec3 a, rt_vec3 b, rt_vec3 c, rt_vec3 o, rt_vec3 d,
     long double nn = fz_l_dot(n, n), nd = fz_l_dot(n, D);
     long double l2 = fmaxl(fz_l_dot(ab, ab), fz_l_dot(ac, ac));
     /* Rounding tilts a plane by about FZ_ABS / edge in the fixed build. */
-    long double l_min = sqrtl(fminl(fminl(fz_l_dot(ab, ab), fz_l_dot(ac, ac)), fz_l_dot(fz_l_sub(C, B), fz_l_sub(C, B))));
+    long double l_min =
+        sqrtl(fminl(fminl(fz_l_dot(ab, ab), fz_l_dot(ac, ac)), fz_l_dot(fz_l_sub(C, B), fz_l_sub(C, B))));
     if (!(nn > 1e-12L * l2 * l2) || !(fabsl(nd) >= (1e-9L + 1e3L * FZ_ABS / l_min) * sqrtl(nn))) return false;
     long double t = fz_l_dot(n, fz_l_sub(A, O)) / nd;
     fz_v3l ap = fz_l_sub(fz_l_along(O, D, t), A);

@@ -34,7 +34,9 @@
 #define FZ_SIZE_LOG2_MAX 40
 #endif
 
-typedef struct { long double x, y, z; } fz_v3l;
+typedef struct {
+    long double x, y, z;
+} fz_v3l;
 
 fz_v3l fz_l(rt_vec3 v);
 fz_v3l fz_l_add(fz_v3l a, fz_v3l b);

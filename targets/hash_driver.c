@@ -1,11 +1,11 @@
 /* Renders a scene blob (made by `rtk pack`) with nothing but the core and prints its
  * render hash. Built for every compiler, optimisation level and CPU of the determinism
  * matrix (targets/determinism.sh); it needs only a C library to read the file. */
-#include <stdio.h>
-#include <stdlib.h>
 #include "blob.h"
 #include "render.h"
 #include "sha256.h"
+#include <stdio.h>
+#include <stdlib.h>
 
 static uint8_t *read_file(const char *path, size_t *size)
 {

@@ -10,10 +10,7 @@ static void skip_space(const char **p)
     while (**p == ' ' || **p == '\t' || **p == '\n' || **p == '\r') (*p)++;
 }
 
-static bool is_digit(char c)
-{
-    return c >= '0' && c <= '9';
-}
+static bool is_digit(char c) { return c >= '0' && c <= '9'; }
 
 static bool string(const char **p)
 {
@@ -39,9 +36,12 @@ static bool number(const char **p)
 {
     const char *s = *p;
     if (*s == '-') s++;
-    if (*s == '0') s++;
-    else if (is_digit(*s)) while (is_digit(*s)) s++;
-    else return false;
+    if (*s == '0')
+        s++;
+    else if (is_digit(*s))
+        while (is_digit(*s)) s++;
+    else
+        return false;
     if (*s == '.') {
         if (!is_digit(*++s)) return false;
         while (is_digit(*s)) s++;

@@ -1,10 +1,10 @@
 /* Test helpers for rendering corpus scenes; see reference.h. */
 #include "reference.h"
 
+#include "load/scene_open.h"
+#include "thread/threads.h"
 #include <stdio.h>
 #include <stdlib.h>
-#include "thread/threads.h"
-#include "load/scene_open.h"
 
 const char *rt_test_trace_dir(void)
 {

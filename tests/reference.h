@@ -3,8 +3,8 @@
 #ifndef RT_TEST_REFERENCE_H
 #define RT_TEST_REFERENCE_H
 
-#include <stdbool.h>
 #include "image/image.h"
+#include <stdbool.h>
 
 /* The shared corpus folder (../shared/cse457/assets/trace unless RTK_SHARED says where shared/ is). */
 const char *rt_test_trace_dir(void);

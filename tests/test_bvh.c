@@ -1,11 +1,11 @@
 /* The BVH returns exactly what testing every primitive returns (core/bvh.c), and its
  * tree does not depend on the build's plan or workers. */
-#include <criterion/criterion.h>
-#include <stdlib.h>
-#include <string.h>
 #include "bvh.h"
 #include "scene_query.h"
 #include "thread/threads.h"
+#include <criterion/criterion.h>
+#include <stdlib.h>
+#include <string.h>
 
 static uint64_t lcg_state;
 static double next_unit(void)
@@ -28,8 +28,10 @@ static void random_scene(rt_scene *s, void **memory, uint32_t triangles, uint32_
     uint32_t *idx = malloc(sizeof(uint32_t) * triangles * 3);
     for (uint32_t i = 0; i < triangles * 3; i++) {
         idx[i] = i;
-        if (i % 3 == 0) pos[i] = rt_v3(next_range(-10, 10), next_range(-10, 10), next_range(-10, 10));
-        else pos[i] = rt_v3_add(pos[i - i % 3], rt_v3(next_range(-1, 1), next_range(-1, 1), next_range(-1, 1)));
+        if (i % 3 == 0)
+            pos[i] = rt_v3(next_range(-10, 10), next_range(-10, 10), next_range(-10, 10));
+        else
+            pos[i] = rt_v3_add(pos[i - i % 3], rt_v3(next_range(-1, 1), next_range(-1, 1), next_range(-1, 1)));
     }
     rt_mesh_desc mesh = {pos, NULL, NULL, triangles * 3, idx, triangles};
     rt_object_desc *objs = calloc(spheres + 1, sizeof *objs);
@@ -38,9 +40,9 @@ static void random_scene(rt_scene *s, void **memory, uint32_t triangles, uint32_
     for (uint32_t i = 1; i <= spheres; i++) {
         objs[i].kind = RT_SHAPE_SPHERE;
         rt_real r = next_range(0.2, 2);
-        rt_vec3 centre = rt_v3(next_range(-10, 10) * spread, next_range(-10, 10) * spread, next_range(-10, 10) * spread);
-        objs[i].world = rt_affine_trs(centre,
-                                      rt_v3(0, 0, 0), rt_v3(r, r * 0.5, r));
+        rt_vec3 centre =
+            rt_v3(next_range(-10, 10) * spread, next_range(-10, 10) * spread, next_range(-10, 10) * spread);
+        objs[i].world = rt_affine_trs(centre, rt_v3(0, 0, 0), rt_v3(r, r * 0.5, r));
     }
     material.index_of_refraction = 1;
     material.diffuse.texture = material.specular.texture = RT_NO_TEXTURE;
@@ -127,8 +129,8 @@ Test(bvh, axis_aligned_rays_equal_brute_force)
     rt_scene s;
     void *memory;
     random_scene(&s, &memory, 1000, 30, 1);
-    static const double dirs[][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1},
-                                     {0.6, 0.8, 0}, {0, -0.6, 0.8}, {-0.8, 0, -0.6}};
+    static const double dirs[][3] = {{1, 0, 0},  {-1, 0, 0},    {0, 1, 0},      {0, -1, 0},     {0, 0, 1},
+                                     {0, 0, -1}, {0.6, 0.8, 0}, {0, -0.6, 0.8}, {-0.8, 0, -0.6}};
     int hits = 0;
     for (int i = 0; i < 20000; i++) {
         const double *d = dirs[i % 9];
@@ -206,12 +208,14 @@ Test(bvh, tree_does_not_depend_on_plan_or_workers)
     random_scene(&s, &memory, 3000, 50, 1);
     cr_assert_gt(s.bvh.node_count, 200);
     static const rt_bvh_plan plans[] = {{1, 1}, {4, 3}, {9, 1000}, {64, 64}, {300, 17}, {1000, 5000}, {3049, 1}};
-    rt_workers threads[] = {rtp_threads_workers(1), rtp_threads_workers(2), rtp_threads_workers(3), rtp_threads_workers(7)};
+    rt_workers threads[] = {rtp_threads_workers(1), rtp_threads_workers(2), rtp_threads_workers(3),
+                            rtp_threads_workers(7)};
     rt_workers backwards = {5, run_backwards};
     for (size_t p = 0; p < sizeof plans / sizeof plans[0]; p++) {
         assert_same_tree(&s, plans[p], NULL, "on this thread");
         assert_same_tree(&s, plans[p], &backwards, "backwards");
-        for (size_t t = 0; t < sizeof threads / sizeof threads[0]; t++) assert_same_tree(&s, plans[p], &threads[t], "threads");
+        for (size_t t = 0; t < sizeof threads / sizeof threads[0]; t++)
+            assert_same_tree(&s, plans[p], &threads[t], "threads");
     }
     free(memory);
 }

@@ -1,7 +1,7 @@
 /* Image comparison: metrics on hand-made pairs, the heat map, and `rtk compare` exit codes. */
 #include "cli/compare_cmd.h"
-#include "image/image_compare.h"
 #include "cli/exit_codes.h"
+#include "image/image_compare.h"
 #include "tmpdir.h"
 
 #include <criterion/criterion.h>
@@ -20,8 +20,7 @@ static const rtp_image img_b = {.width = 4, .height = 4, .rgb = px_b};
 
 static void setup(void)
 {
-    for (int i = 0; i < 4 * 4 * 3; i++)
-        px_a[i] = px_b[i] = (uint8_t)(i * 5 + 20);
+    for (int i = 0; i < 4 * 4 * 3; i++) px_a[i] = px_b[i] = (uint8_t)(i * 5 + 20);
     px_b[3 * (1 * 4 + 2) + 1] += 3;
 
     cr_assert(tmpdir_make(dir, sizeof dir, "compare"), "cannot create a scratch folder");
@@ -37,10 +36,7 @@ static void setup(void)
     cr_redirect_stderr();
 }
 
-static void teardown(void)
-{
-    tmpdir_remove(dir);
-}
+static void teardown(void) { tmpdir_remove(dir); }
 
 TestSuite(compare, .init = setup, .fini = teardown);
 
@@ -124,8 +120,7 @@ Test(compare, heat_map_ramp)
         pb[3 * i + i % 3] = diffs[i]; /* the largest channel difference may sit in any channel */
     rtp_image a = {.width = 7, .height = 1, .rgb = pa}, b = {.width = 7, .height = 1, .rgb = pb}, map;
     cr_assert(rtp_image_diff_map(&a, &b, &map));
-    for (int i = 0; i < 7; i++)
-        cr_expect_arr_eq(map.rgb + 3 * i, want[i], 3, "difference %d", diffs[i]);
+    for (int i = 0; i < 7; i++) cr_expect_arr_eq(map.rgb + 3 * i, want[i], 3, "difference %d", diffs[i]);
     rtp_image_free(&map);
 }
 
@@ -136,8 +131,7 @@ static int cmd(const char *first, ...)
     int argc = 2;
     va_list ap;
     va_start(ap, first);
-    for (const char *s; argc < 15 && (s = va_arg(ap, const char *)) != NULL;)
-        argv[argc++] = (char *)s;
+    for (const char *s; argc < 15 && (s = va_arg(ap, const char *)) != NULL;) argv[argc++] = (char *)s;
     va_end(ap);
     return rtp_cmd_compare(argc, argv);
 }

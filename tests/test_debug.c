@@ -4,8 +4,8 @@
 #include "capture.h"
 #include "cli/debug_cmd.h"
 #include "cli/exit_codes.h"
-#include "json_check.h"
 #include "debug/pixel_trace.h"
+#include "json_check.h"
 #include "reference.h"
 #include "tmpdir.h"
 
@@ -402,7 +402,8 @@ Test(debug, camera_ray_ends_on_the_light)
         /* It ends on the square: y = 2, |x| and |z| within 1. */
         rt_vec3 end = rt_v3_madd(r->ray.origin, r->ray.direction, r->ray.t_max);
         cr_expect(fabs(rt_to_double(end.y) - 2) < 1e-9 && fabs(rt_to_double(end.x)) <= 1 &&
-                      fabs(rt_to_double(end.z)) <= 1, "ends at (%g, %g, %g)", XYZ(end));
+                      fabs(rt_to_double(end.z)) <= 1,
+                  "ends at (%g, %g, %g)", XYZ(end));
     }
     cr_expect_eq(n, 4u);
     cr_expect_arr_eq(pt.rgb, ((uint8_t[]){255, 255, 255}), 3);
@@ -525,7 +526,8 @@ Test(debug, monte_carlo_text_and_json)
     free(out);
     cr_assert_eq(debug_cmd(&out, mc_path, "--pixel", "8,1", "--sample", "0", "--json", NULL), RTP_EXIT_OK);
     cr_expect(json_is_valid(out), "%s", out);
-    cr_expect(strstr(out, "\"hit\": null, \"light_hit\": {\"light\": 0, \"kind\": \"area\", \"t\": ") != NULL, "%s", out);
+    cr_expect(strstr(out, "\"hit\": null, \"light_hit\": {\"light\": 0, \"kind\": \"area\", \"t\": ") != NULL, "%s",
+              out);
     cr_expect(strstr(out, "\"emission\": [64, 57.6") != NULL, "%s", out);
     free(out);
     cr_assert_eq(debug_cmd(&out, mc_path, "--pixel", "8,9", NULL), RTP_EXIT_OK);

@@ -1,8 +1,8 @@
 /* Image I/O: PNG and PPM round trips, the solution images, hostile files, atomic writes. */
+#include "image/file_write.h"
 #include "image/image.h"
 #include "reference.h"
 #include "tmpdir.h"
-#include "image/file_write.h"
 
 #include <criterion/criterion.h>
 #include <stdio.h>
@@ -12,15 +12,9 @@
 
 static char dir[64];
 
-static void setup(void)
-{
-    cr_assert(tmpdir_make(dir, sizeof dir, "image"), "cannot create a scratch folder");
-}
+static void setup(void) { cr_assert(tmpdir_make(dir, sizeof dir, "image"), "cannot create a scratch folder"); }
 
-static void teardown(void)
-{
-    tmpdir_remove(dir);
-}
+static void teardown(void) { tmpdir_remove(dir); }
 
 TestSuite(image, .init = setup, .fini = teardown);
 
@@ -59,8 +53,7 @@ static unsigned char *get_file(const char *path, size_t *size)
 /* 7x5 with every channel different, so a swapped axis or channel shows. */
 static rtp_image pattern(uint8_t storage[7 * 5 * 3])
 {
-    for (int i = 0; i < 7 * 5 * 3; i++)
-        storage[i] = (uint8_t)(i * 37 + 11);
+    for (int i = 0; i < 7 * 5 * 3; i++) storage[i] = (uint8_t)(i * 37 + 11);
     return (rtp_image){.width = 7, .height = 5, .rgb = storage};
 }
 
@@ -79,15 +72,9 @@ static void round_trip(const char *name)
     cr_assert_null(back.rgb);
 }
 
-Test(image, png_round_trip_is_bit_identical)
-{
-    round_trip("a.png");
-}
+Test(image, png_round_trip_is_bit_identical) { round_trip("a.png"); }
 
-Test(image, ppm_round_trip_is_bit_identical)
-{
-    round_trip("a.ppm");
-}
+Test(image, ppm_round_trip_is_bit_identical) { round_trip("a.ppm"); }
 
 Test(image, png_chosen_by_extension_in_any_case)
 {
@@ -142,8 +129,8 @@ static void expect_pixel(const char *name, uint32_t x, uint32_t y, int r, int g,
     cr_expect_eq(img.width, 512);
     cr_expect_eq(img.height, 512);
     const uint8_t *p = img.rgb + 3 * ((size_t)y * img.width + x);
-    cr_expect(p[0] == r && p[1] == g && p[2] == b, "%s (%u, %u) is (%d, %d, %d), want (%d, %d, %d)",
-              name, x, y, p[0], p[1], p[2], r, g, b);
+    cr_expect(p[0] == r && p[1] == g && p[2] == b, "%s (%u, %u) is (%d, %d, %d), want (%d, %d, %d)", name, x, y, p[0],
+              p[1], p[2], r, g, b);
     rtp_image_free(&img);
 }
 
@@ -202,17 +189,15 @@ static void put_png_header(const char *path, uint32_t w, uint32_t h)
         f[16 + i] = (unsigned char)(w >> (24 - 8 * i));
         f[20 + i] = (unsigned char)(h >> (24 - 8 * i));
     }
-    f[24] = 8; /* bit depth */
-    f[25] = 2; /* RGB */
+    f[24] = 8;                  /* bit depth */
+    f[25] = 2;                  /* RGB */
     uint32_t crc = 0xffffffffu; /* CRC-32 over type and data, as PNG specifies */
     for (int i = 12; i < 29; i++) {
         crc ^= f[i];
-        for (int k = 0; k < 8; k++)
-            crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1)));
+        for (int k = 0; k < 8; k++) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1)));
     }
     crc = ~crc;
-    for (int i = 0; i < 4; i++)
-        f[29 + i] = (unsigned char)(crc >> (24 - 8 * i));
+    for (int i = 0; i < 4; i++) f[29 + i] = (unsigned char)(crc >> (24 - 8 * i));
     put_file(path, f, sizeof f);
 }
 

@@ -3,9 +3,9 @@
 #include "capture.h"
 #include "cli/exit_codes.h"
 #include "cli/info_cmd.h"
+#include "debug/scene_stats.h"
 #include "json_check.h"
 #include "reference.h"
-#include "debug/scene_stats.h"
 #include "tmpdir.h"
 
 #include <criterion/criterion.h>
@@ -123,7 +123,8 @@ Test(info, texture_reflection_counts)
     cr_expect_str_eq(built.loaded.texture_names[0], "texture-checkerboard");
     cr_expect_eq(built.scene.textures[0].width, 542u);
     cr_expect_eq(built.scene.textures[0].height, 538u);
-    cr_expect(st.bvh_nodes < st.bvh_leaves && st.bvh_leaves <= 3 * st.bvh_nodes + 1, "a tree of 2 to 4 children per node");
+    cr_expect(st.bvh_nodes < st.bvh_leaves && st.bvh_leaves <= 3 * st.bvh_nodes + 1,
+              "a tree of 2 to 4 children per node");
     cr_expect(st.sah_cost >= 1.0 && st.sah_cost <= st.bvh_nodes + 13.0, "SAH cost %g", st.sah_cost);
 }
 
@@ -165,7 +166,8 @@ Test(info, sah_cost_of_a_hand_made_tree)
     cr_expect_float_eq(rtp_scene_stats_sah_cost(&bvh, 3), 3.0, 1e-12);
     rt_bvh_node lone = {{{o}, {o}, {o}, {l}, {l}, {l}}, {0}, {2, RT_BVH_NO_CHILD, RT_BVH_NO_CHILD, RT_BVH_NO_CHILD}};
     rt_bvh leaf = {&lone, 1, NULL, 2, g, RT_ONE};
-    cr_expect_float_eq(rtp_scene_stats_sah_cost(&leaf, 2), 3.0, 1e-12, "a lone leaf: the root's visit and one test per primitive");
+    cr_expect_float_eq(rtp_scene_stats_sah_cost(&leaf, 2), 3.0, 1e-12,
+                       "a lone leaf: the root's visit and one test per primitive");
     cr_expect_eq(rtp_scene_stats_sah_cost(&bvh, 0), 0.0, "no primitives");
 }
 

@@ -1,7 +1,7 @@
 /* Unit tests of the ray-primitive intersectors (core/intersect.c). */
+#include "intersect.h"
 #include <criterion/criterion.h>
 #include <math.h>
-#include "intersect.h"
 
 static rt_ray_setup setup(rt_vec3 o, rt_vec3 d)
 {

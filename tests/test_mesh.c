@@ -1,7 +1,7 @@
 /* Mesh processing: smooth normals, Loop subdivision (§7.4), the built-in Cube and square. */
 #include "builtin_mesh.h"
-#include "mesh.h"
 #include "load/ply.h"
+#include "mesh.h"
 
 #include <criterion/criterion.h>
 #include <math.h>
@@ -21,14 +21,14 @@ static void setup(void)
     rt_arena_init(&arena, memory, size);
 }
 
-static void teardown(void)
-{
-    free(memory);
-}
+static void teardown(void) { free(memory); }
 
 TestSuite(mesh, .init = setup, .fini = teardown);
 
-static rt_vec3 v3(double x, double y, double z) { return rt_v3(rt_from_double(x), rt_from_double(y), rt_from_double(z)); }
+static rt_vec3 v3(double x, double y, double z)
+{
+    return rt_v3(rt_from_double(x), rt_from_double(y), rt_from_double(z));
+}
 
 static void expect_near(rt_vec3 got, rt_vec3 want, double tol, const char *what, uint32_t i)
 {
@@ -68,8 +68,8 @@ Test(mesh, smooth_normals_are_area_weighted_over_bit_identical_positions)
 {
     /* Three separate triangles: two share the edge (0,0,0)-(0,2,0) with areas 2 (z = 0
      * plane) and 3 (x = 0 plane); the third starts at -0.0, which is not the same bits. */
-    rt_vec3 p[] = {v3(0, 0, 0), v3(2, 0, 0), v3(0, 2, 0), v3(0, 0, 0), v3(0, 2, 0), v3(0, 0, 3),
-                   v3(-0.0, 0, 0), v3(0, -1, 0), v3(0, 0, -1)};
+    rt_vec3 p[] = {v3(0, 0, 0), v3(2, 0, 0),    v3(0, 2, 0),  v3(0, 0, 0), v3(0, 2, 0),
+                   v3(0, 0, 3), v3(-0.0, 0, 0), v3(0, -1, 0), v3(0, 0, -1)};
     uint32_t idx[] = {0, 1, 2, 3, 4, 5, 6, 7, 8};
     rt_mesh_desc m = solid(p, 9, idx, 3);
     rt_vec3 *n;
@@ -108,8 +108,10 @@ Test(mesh, sculpt_gets_smooth_normals)
     for (uint32_t i = 0; i < m.vertex_count; i++) {
         uint32_t v = order[i].v;
         cr_assert_lt(fabs(length(n[v]) - 1), 1e-12, "normal %u is not unit", v);
-        if (i == 0 || by_position(&order[i], &order[i - 1]) != 0) groups++;
-        else cr_assert_arr_eq(&n[v], &n[order[i - 1].v], sizeof(rt_vec3), "vertex %u differs from its twin", v);
+        if (i == 0 || by_position(&order[i], &order[i - 1]) != 0)
+            groups++;
+        else
+            cr_assert_arr_eq(&n[v], &n[order[i - 1].v], sizeof(rt_vec3), "vertex %u differs from its twin", v);
     }
     for (uint32_t t = 0; t < m.triangle_count; t++) {
         const uint32_t *i = &m.indices[3 * t];
@@ -204,7 +206,8 @@ Test(mesh, subdivided_octahedron_is_a_smooth_closed_blob)
             lo[level] = fmin(lo[level], r);
             hi[level] = fmax(hi[level], r);
             cr_assert_lt(fabs(length(n) - 1), 1e-12, "level %u normal %u is not unit", level, v);
-            cr_assert_gt(rt_to_double(rt_v3_dot(n, p)) / r, 0.99, "level %u normal %u does not point outward", level, v);
+            cr_assert_gt(rt_to_double(rt_v3_dot(n, p)) / r, 0.99, "level %u normal %u does not point outward", level,
+                         v);
         }
         cr_expect(lo[level] > 0.4 && hi[level] < 0.49, "level %u radii [%g, %g]", level, lo[level], hi[level]);
     }
@@ -355,7 +358,8 @@ Test(mesh, cube_matches_the_format)
         rt_vec3 n = rt_v3_normalize(rt_v3_cross(rt_v3_sub(c.positions[i[1]], c.positions[i[0]]),
                                                 rt_v3_sub(c.positions[i[2]], c.positions[i[0]])));
         for (int k = 0; k < 3; k++) /* by value: the cross product has some -0.0 */
-            cr_expect(n.x == c.normals[i[k]].x && n.y == c.normals[i[k]].y && n.z == c.normals[i[k]].z, "triangle %u", t);
+            cr_expect(n.x == c.normals[i[k]].x && n.y == c.normals[i[k]].y && n.z == c.normals[i[k]].z, "triangle %u",
+                      t);
     }
 }
 

@@ -4,18 +4,18 @@
  * lights, lights seen by camera rays only, the Blinn-Phong lobe of glossy rays),
  * convergence as 1/sqrt(spp), the energy bound, the sample count types, the thin lens,
  * and independence from tiles and threads. */
+#include "area_light.h"
+#include "cli/cli.h"
+#include "load/scene_open.h"
+#include "path_trace.h"
+#include "reference.h"
+#include "render.h"
+#include "thread/threads.h"
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "cli/cli.h"
-#include "area_light.h"
-#include "thread/threads.h"
-#include "path_trace.h"
-#include "reference.h"
-#include "render.h"
-#include "load/scene_open.h"
 
 /* ---- Helpers ---- */
 
@@ -26,7 +26,10 @@
 #define EXACT 1e-9
 #endif
 
-static rt_vec3 v3(double x, double y, double z) { return rt_v3(rt_from_double(x), rt_from_double(y), rt_from_double(z)); }
+static rt_vec3 v3(double x, double y, double z)
+{
+    return rt_v3(rt_from_double(x), rt_from_double(y), rt_from_double(z));
+}
 
 static rt_material material(rt_vec3 kd, rt_vec3 ks, rt_vec3 ke)
 {
@@ -268,8 +271,8 @@ Test(montecarlo, white_furnace_gives_the_finite_bounce_sum)
             rt_vec3 *c = render_colors(&b.scene);
             double want = finite_sum(0.25, 0.5, depths[i]);
             for (int p = 0; p < 16; p++)
-                cr_expect(fabs(rt_to_double(c[p].y) - want) < 1e-6, "depth %u mode %u: %.9f, want %.9f",
-                          depths[i], mode, rt_to_double(c[p].y), want);
+                cr_expect(fabs(rt_to_double(c[p].y) - want) < 1e-6, "depth %u mode %u: %.9f, want %.9f", depths[i],
+                          mode, rt_to_double(c[p].y), want);
             if (depths[i] == 40) cr_expect(fabs(rt_to_double(c[0].x) - 0.5) < 1e-6, "not e / (1 - rho)");
             free(c);
             free(b.memory);
@@ -583,14 +586,14 @@ Test(montecarlo, no_sample_brighter_than_the_bound)
                     continue;
                 }
                 for (int ch = 0; ch < 3; ch++) {
-                    cr_expect(channel(c, ch) <= bound[ch], "pixel (%u, %u) sample %u channel %d: %.4f above %.4f", x,
-                              y, k, ch, channel(c, ch), bound[ch]);
+                    cr_expect(channel(c, ch) <= bound[ch], "pixel (%u, %u) sample %u channel %d: %.4f above %.4f", x, y,
+                              k, ch, channel(c, ch), bound[ch]);
                     brightest[ch] = fmax(brightest[ch], channel(c, ch));
                 }
             }
     for (int ch = 0; ch < 3; ch++) {
-        fprintf(stderr, "montecarlo: cornell 16x16 channel %d: brightest sample %.4f, bound %.4f\n", ch,
-                brightest[ch], bound[ch]);
+        fprintf(stderr, "montecarlo: cornell 16x16 channel %d: brightest sample %.4f, bound %.4f\n", ch, brightest[ch],
+                bound[ch]);
         cr_expect(brightest[ch] > 0.3, "the box is dark: %.4f", brightest[ch]);
     }
     fprintf(stderr, "montecarlo: cornell 16x16: %u of 4096 samples end on a light\n", on_light);

@@ -14,15 +14,9 @@
 
 static char dir[64];
 
-static void setup(void)
-{
-    cr_assert(tmpdir_make(dir, sizeof dir, "ply"), "cannot create a scratch folder");
-}
+static void setup(void) { cr_assert(tmpdir_make(dir, sizeof dir, "ply"), "cannot create a scratch folder"); }
 
-static void teardown(void)
-{
-    tmpdir_remove(dir);
-}
+static void teardown(void) { tmpdir_remove(dir); }
 
 TestSuite(ply, .init = setup, .fini = teardown);
 
@@ -53,8 +47,8 @@ typedef struct {
 
 static int type_size(const char *t)
 {
-    static const char *const names[] = {"char", "uchar", "int8", "uint8", "short", "ushort", "int16", "uint16",
-                                        "int", "uint", "int32", "uint32", "float", "float32", "double", "float64"};
+    static const char *const names[] = {"char", "uchar", "int8",  "uint8",  "short", "ushort",  "int16",  "uint16",
+                                        "int",  "uint",  "int32", "uint32", "float", "float32", "double", "float64"};
     static const int sizes[] = {1, 1, 1, 1, 2, 2, 2, 2, 4, 4, 4, 4, 4, 4, 8, 8};
     for (int i = 0; i < 16; i++)
         if (strcmp(t, names[i]) == 0) return sizes[i];
@@ -67,8 +61,10 @@ static void put_value(FILE *f, const char *format, const char *type, double d)
     int n = type_size(type);
     bool is_float = type[0] == 'f' || type[0] == 'd';
     if (strcmp(format, "ascii") == 0) {
-        if (is_float) fprintf(f, "%.17g ", n == 4 ? (double)(float)d : d);
-        else fprintf(f, "%lld ", (long long)d);
+        if (is_float)
+            fprintf(f, "%.17g ", n == 4 ? (double)(float)d : d);
+        else
+            fprintf(f, "%lld ", (long long)d);
         return;
     }
     uint64_t bits;
@@ -124,8 +120,8 @@ static rtp_ply_mesh load(const char *path)
 static const prop full_props[] = {{"float", "x"},  {"float", "y"},  {"float", "z"}, {"float", "nx"},
                                   {"float", "ny"}, {"float", "nz"}, {"float", "u"}, {"float", "v"}};
 static const double full_values[] = {
-    0, 0, 0, 0, 0, 1, 0, 0,         1, 0, 0, 0, 0, 1, 1, 0,    1, 1, 0, 0, 0, 1, 1, 1,
-    0.5, 1.5, 0, 0, 0, 1, 0.5, 1.5, 0, 1, 0, 0, 0, 1, 0, 1,    0.1, -0.3, 2.7, 0.6, 0.8, 0, 0.25, 0.75,
+    0,   0,   0, 0, 0, 1, 0,   0,   1, 0, 0, 0, 0, 1, 1, 0, 1,   1,    0,   0,   0,   1, 1,    1,
+    0.5, 1.5, 0, 0, 0, 1, 0.5, 1.5, 0, 1, 0, 0, 0, 1, 0, 1, 0.1, -0.3, 2.7, 0.6, 0.8, 0, 0.25, 0.75,
 };
 static const int full_faces[] = {5, 0, 1, 2, 3, 4, 4, 0, 1, 5, 4, 3, 1, 2, 5};
 
@@ -219,12 +215,13 @@ Test(ply, polygons_are_fan_triangulated)
 
 Test(ply, every_scalar_type_and_alias_in_both_byte_orders)
 {
-    static const prop props[] = {{"char", "x"},     {"int16", "y"},   {"double", "z"},   {"uint8", "red"},
+    static const prop props[] = {{"char", "x"},      {"int16", "y"},   {"double", "z"},   {"uint8", "red"},
                                  {"ushort", "junk"}, {"uint", "more"}, {"float64", "nx"}, {"float32", "ny"},
                                  {"int32", "nz"},    {"uint16", "s"},  {"int8", "t"},     {"short", "q"}};
-    static const double values[] = {-128, -32768, 0.1, 255, 65535, 4294967295.0, 0.5, 0.25, -2, 65535, 127, 5,
-                                    127,  32767,  -1e300, 0, 0, 0, 0, 0, 7, 0, -128, 0,
-                                    1,    2,      3,  1, 1, 1, 1, 1, 1, 1, 1, 1};
+    static const double values[] = {
+        -128, -32768, 0.1, 255, 65535, 4294967295.0, 0.5, 0.25, -2, 65535, 127, 5, 127, 32767, -1e300, 0, 0,
+        0,    0,      0,   7,   0,     -128,         0,   1,    2,  3,     1,   1, 1,   1,     1,      1, 1,
+        1,    1};
     static const int faces[] = {3, 0, 1, 2};
     static const char *const formats[] = {"ascii", "binary_little_endian", "binary_big_endian"};
     static const char *const index_types[] = {"ushort", "uint32", "int8"};
@@ -336,7 +333,9 @@ Test(ply, hostile_headers)
         const char *text, *error;
     } cases[] = {
         {"", "line 1: not a PLY file"},
-        {"\x7f" "ELF\x02\x01\x01\x00\x00\x00\n", "line 1: not a PLY file"},
+        {"\x7f"
+         "ELF\x02\x01\x01\x00\x00\x00\n",
+         "line 1: not a PLY file"},
         {"PLY\nformat ascii 1.0\n", "line 1: not a PLY file"},
         {HEAD XYZ "element face 1\n", "line 8: end of file before end_header"},
         {"ply\nformat ascii 2.0\n" XYZ FACE TRI "3 0 1 2\n", "line 2: expected 'format"},
@@ -351,19 +350,24 @@ Test(ply, hostile_headers)
         {HEAD "element vertex -3\n", "line 3: element count is not a non-negative integer"},
         {HEAD "element vertex 99999999999999999999999\n", "line 3: element count too large"},
         {HEAD XYZ "element vertex 3\n", "line 7: element vertex declared twice"},
-        {HEAD "element vertex 3\nproperty float x\nproperty float y\nproperty float x\n", "line 6: second property for x"},
+        {HEAD "element vertex 3\nproperty float x\nproperty float y\nproperty float x\n",
+         "line 6: second property for x"},
         {HEAD "element vertex 3\nproperty list uchar float x\n", "line 4: property x must be a scalar"},
         {HEAD XYZ "element face 1\nproperty int vertex_indices\n", "line 8: property vertex_indices must be a list"},
-        {HEAD XYZ "element face 1\nproperty list float int vertex_indices\n", "line 8: list count type must be an integer"},
-        {HEAD XYZ "element face 1\nproperty list uchar float vertex_indices\n", "line 8: vertex indices must be integers"},
-        {HEAD "element vertex 3\nproperty float x\nproperty float y\n" FACE TRI "3 0 1 2\n", "line 3: element vertex has no property z"},
+        {HEAD XYZ "element face 1\nproperty list float int vertex_indices\n",
+         "line 8: list count type must be an integer"},
+        {HEAD XYZ "element face 1\nproperty list uchar float vertex_indices\n",
+         "line 8: vertex indices must be integers"},
+        {HEAD "element vertex 3\nproperty float x\nproperty float y\n" FACE TRI "3 0 1 2\n",
+         "line 3: element vertex has no property z"},
         {HEAD FACE "3 0 1 2\n", "no element vertex"},
         {HEAD XYZ "end_header\n" TRI, "line 7: no element face with a vertex_indices list"},
         {HEAD "element vertex 4000000000\nproperty float x\nproperty float y\nproperty float z\n" FACE TRI,
          "line 3: element vertex declares 4000000000 entries but the file has room for at most"},
         {HEAD XYZ "element face 4000000000\nproperty list uchar int vertex_indices\nend_header\n" TRI,
          "line 7: element face declares 4000000000 entries"},
-        {HEAD "element vertex 4294967295\nproperty float x\nproperty float y\nproperty float z\n" FACE, "line 3: too many vertices"},
+        {HEAD "element vertex 4294967295\nproperty float x\nproperty float y\nproperty float z\n" FACE,
+         "line 3: too many vertices"},
         {HEAD "element a 1\nelement b 1\nelement c 1\nelement d 1\nelement e 1\nelement f 1\nelement g 1\n"
               "element h 1\nelement i 1\nelement j 1\nelement k 1\nelement l 1\nelement m 1\nelement n 1\n"
               "element o 1\nelement p 1\nelement q 1\n",
@@ -399,7 +403,8 @@ Test(ply, hostile_ascii_bodies)
         {HEAD XYZ FACE "0 0 0\n1 0 abc\n0 1 0\n3 0 1 2\n", "line 11: vertex 1 of 3: 'abc' is not a number"},
         {HEAD XYZ FACE "0 0 0\n1 0 0.5.5\n0 1 0\n3 0 1 2\n", "'0.5.5' is not a number"},
         {HEAD XYZ FACE "0 0 0\n1 0\n0 1 0\n3 0 1 2\n", "line 11: vertex 1 of 3: fewer values than the header declares"},
-        {HEAD XYZ FACE "0 0 0\n1 0 0 0\n0 1 0\n3 0 1 2\n", "line 11: vertex 1 of 3: more values than the header declares"},
+        {HEAD XYZ FACE "0 0 0\n1 0 0 0\n0 1 0\n3 0 1 2\n",
+         "line 11: vertex 1 of 3: more values than the header declares"},
         {HEAD XYZ FACE TRI "3 0 1\n", "line 13: face 0 of 1: fewer values"},
         {HEAD XYZ FACE TRI "3 0 1 2.0\n", "'2.0' is not an integer"},
         {HEAD XYZ FACE TRI "300 0 1 2\n", "300 out of range for uchar"},
@@ -408,7 +413,8 @@ Test(ply, hostile_ascii_bodies)
          "face 0 of 1: negative list count"},
         {HEAD XYZ FACE "0 0 0\n1 0 1234567890123456789012345678901234567890123456789012345678901234567890\n",
          "value too long to be a number"},
-        {HEAD XYZ FACE "garbage line here\nmore garbage\n\x01\x02\x03\n", "line 10: vertex 0 of 3: 'garbage' is not a number"},
+        {HEAD XYZ FACE "garbage line here\nmore garbage\n\x01\x02\x03\n",
+         "line 10: vertex 0 of 3: 'garbage' is not a number"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         char name[32];
@@ -474,8 +480,10 @@ Test(ply, hostile_binary_bodies)
     static const uint8_t huge_face[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0xff, 0xff, 0xff, 0xff, 0, 0, 0, 0, 1, 0, 0, 0};
     expect_error(put_binary("hugeface.ply", LE BXYZ UFACE, huge_face, sizeof huge_face),
                  at_byte(LE BXYZ UFACE, 21, "face 0 of 1: unexpected end of file"));
-    expect_error(put_binary("absurd.ply", LE "element vertex 4000000000\nproperty uchar x\nproperty uchar y\n"
-                                             "property uchar z\n" BFACE, tri, sizeof tri),
+    expect_error(put_binary("absurd.ply",
+                            LE "element vertex 4000000000\nproperty uchar x\nproperty uchar y\n"
+                               "property uchar z\n" BFACE,
+                            tri, sizeof tri),
                  "line 3: element vertex declares 4000000000 entries but the file has room for at most 4");
 }
 
@@ -506,10 +514,11 @@ Test(ply, identical_vertices_are_joined)
     fputs("ply\nformat ascii 1.0\nelement vertex 7\nproperty float x\nproperty float y\nproperty float z\n"
           "property float nx\nproperty float ny\nproperty float nz\n"
           "element face 2\nproperty list uchar int vertex_indices\nend_header\n"
-          "0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n"   /* face 0 */
-          "1 0 0 0 0 1\n1 1 0 0 0 1\n0 1 0 0 0 1\n"   /* face 1 repeats two corners exactly */
-          "0 0 0 1 0 0\n"                              /* same position, other normal: kept */
-          "3 0 1 2\n3 3 4 5\n", f);
+          "0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n" /* face 0 */
+          "1 0 0 0 0 1\n1 1 0 0 0 1\n0 1 0 0 0 1\n" /* face 1 repeats two corners exactly */
+          "0 0 0 1 0 0\n"                           /* same position, other normal: kept */
+          "3 0 1 2\n3 3 4 5\n",
+          f);
     fclose(f);
     rtp_ply_mesh m = load(path);
     cr_assert_eq(m.vertex_count, 5);

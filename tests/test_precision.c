@@ -23,7 +23,10 @@ static long double len_of(rt_vec3 v)
     return sqrtl(x * x + y * y + z * z);
 }
 
-static rt_vec3 v3d(double x, double y, double z) { return rt_v3(rt_from_double(x), rt_from_double(y), rt_from_double(z)); }
+static rt_vec3 v3d(double x, double y, double z)
+{
+    return rt_v3(rt_from_double(x), rt_from_double(y), rt_from_double(z));
+}
 
 /* fuzz_triangle: a sliver's cross product is about 1e-6 long, and its squared length kept
  * a few significant bits in Q32.32, so its "unit" normal came out 6e-5 too long; the
@@ -120,7 +123,8 @@ Test(precision, bounds_round_outwards_by_at_most_one_step)
             double unit = (double)(state >> 11) * 0x1p-53 * 2 - 1; /* in [-1, 1) */
             rt_real x = rt_from_double(unit * limits[l] * ldexp(1.0, -(int)(state % 24)));
             if (i < 4) x = i == 0 ? limit : i == 1 ? rt_neg(limit) : i == 2 ? RT_ZERO : rt_from_double(-1e-30);
-            rt_real lo = rt_bound_value(rt_bound_below(x, grid), grid), hi = rt_bound_value(rt_bound_above(x, grid), grid);
+            rt_real lo = rt_bound_value(rt_bound_below(x, grid), grid),
+                    hi = rt_bound_value(rt_bound_above(x, grid), grid);
             cr_assert(lo <= x && x <= hi, "limit %g: %.17g stored as [%.17g, %.17g]", limits[l], rt_to_double(x),
                       rt_to_double(lo), rt_to_double(hi));
 #ifdef RT_REAL_FIXED
@@ -144,8 +148,10 @@ Test(precision, a_slivers_normals_are_unit_length)
     rt_vec3 pos[3] = {v3d(0.25, 0.25, 0.25), v3d(0.24999237060546875, 0.25, 0.24804684519767761),
                       v3d(0.25, 0.25, 0.24999237060546875)};
     rt_mesh_desc mesh = {pos, NULL, NULL, 3, idx, 1};
-    rt_material material = {.diffuse = {.texture = RT_NO_TEXTURE}, .specular = {.texture = RT_NO_TEXTURE},
-                            .emissive = {.texture = RT_NO_TEXTURE}, .transmittance = {.texture = RT_NO_TEXTURE},
+    rt_material material = {.diffuse = {.texture = RT_NO_TEXTURE},
+                            .specular = {.texture = RT_NO_TEXTURE},
+                            .emissive = {.texture = RT_NO_TEXTURE},
+                            .transmittance = {.texture = RT_NO_TEXTURE},
                             .index_of_refraction = RT_ONE};
     rt_object_desc obj = {.kind = RT_SHAPE_MESH, .world = rt_affine_identity()};
     rt_scene_desc d = {0};

@@ -2,8 +2,8 @@
  * libm on deterministic samples, their special cases, and rotations against cglm. */
 #ifndef RT_REAL_FIXED
 
-#include <criterion/criterion.h>
 #include <cglm/cglm.h>
+#include <criterion/criterion.h>
 #include <math.h>
 #include <string.h>
 
@@ -18,13 +18,18 @@
 #define POW_ULP 1.0L
 
 /* 64-bit LCG (Knuth's MMIX constants): the same samples on every run and platform. */
-typedef struct { uint64_t s; } lcg;
+typedef struct {
+    uint64_t s;
+} lcg;
 static uint64_t lcg_next(lcg *g)
 {
     g->s = g->s * 6364136223846793005u + 1442695040888963407u;
     return g->s;
 }
-static double lcg_uniform(lcg *g, double lo, double hi) { return lo + (hi - lo) * ((double)(lcg_next(g) >> 11) * 0x1p-53); }
+static double lcg_uniform(lcg *g, double lo, double hi)
+{
+    return lo + (hi - lo) * ((double)(lcg_next(g) >> 11) * 0x1p-53);
+}
 /* A random finite positive double (any exponent, subnormals included). */
 static double lcg_positive(lcg *g)
 {
@@ -44,7 +49,12 @@ static long double ulp_error(double got, long double ref)
 }
 
 typedef double (*sample_fn)(lcg *g);
-typedef struct { const char *name; rt_real (*f)(rt_real); long double (*ref)(long double); long double bound; } unary_case;
+typedef struct {
+    const char *name;
+    rt_real (*f)(rt_real);
+    long double (*ref)(long double);
+    long double bound;
+} unary_case;
 
 /* Max ulp error of c over n samples from gen; fails naming the worst input. */
 static void check_unary(unary_case c, sample_fn gen, uint64_t seed, int n)
@@ -67,7 +77,10 @@ static void check_unary(unary_case c, sample_fn gen, uint64_t seed, int n)
 static double gen_pm1e4(lcg *g) { return lcg_uniform(g, -1e4, 1e4); }
 static double gen_small(lcg *g) { return ldexp(lcg_uniform(g, -1.0, 1.0), (int)(lcg_next(g) % 40) - 38); }
 /* The doubles nearest k*pi/2, where the reduction cancels the most. */
-static double gen_near_pio2(lcg *g) { return (double)((long double)(lcg_next(g) % 12733) * (3.14159265358979323846264338327950288L / 2)); }
+static double gen_near_pio2(lcg *g)
+{
+    return (double)((long double)(lcg_next(g) % 12733) * (3.14159265358979323846264338327950288L / 2));
+}
 static double gen_huge(lcg *g) { return ldexp(lcg_uniform(g, -2.0, 2.0), 17 + (int)(lcg_next(g) % 1006)); }
 static double gen_exp_range(lcg *g) { return lcg_uniform(g, -745.0, 709.78); }
 static double gen_unit(lcg *g) { return lcg_uniform(g, -1.0, 1.0); }
@@ -192,9 +205,9 @@ Test(real, pow_within_bound_on_specular_domain)
     long double worst = 0.0L;
     double wx = 0.0, wy = 0.0;
     for (int i = 0; i < 300000; i++) {
-        double x = i % 3 == 0 ? lcg_uniform(&g, 0.0, 1.0)
-                 : i % 3 == 1 ? ldexp(lcg_uniform(&g, 0.5, 1.0), -(int)(lcg_next(&g) % 40))
-                              : 1.0 - ldexp(lcg_uniform(&g, 0.0, 1.0), -(int)(lcg_next(&g) % 50));
+        double x = i % 3 == 0   ? lcg_uniform(&g, 0.0, 1.0)
+                   : i % 3 == 1 ? ldexp(lcg_uniform(&g, 0.5, 1.0), -(int)(lcg_next(&g) % 40))
+                                : 1.0 - ldexp(lcg_uniform(&g, 0.0, 1.0), -(int)(lcg_next(&g) % 50));
         double y = i % 5 == 0 ? (double)(lcg_next(&g) % 1001) : lcg_uniform(&g, 0.0, 1000.0);
         if (x == 0.0) continue;
         long double err = ulp_error(rt_pow(x, y), powl(x, y));
@@ -248,7 +261,8 @@ Test(real, rotation_matches_cglm)
         for (int r = 0; r < 3; r++)
             for (int c = 0; c < 3; c++) /* cglm is column-major: m[column][row] */
                 cr_assert(fabs(a.linear.m[r][c] - (double)m[c][r]) <= 1e-6,
-                          "angles (%g, %g, %g): [%d][%d] rt %.9f cglm %.9f", ax, ay, az, r, c, a.linear.m[r][c], (double)m[c][r]);
+                          "angles (%g, %g, %g): [%d][%d] rt %.9f cglm %.9f", ax, ay, az, r, c, a.linear.m[r][c],
+                          (double)m[c][r]);
     }
 }
 

@@ -11,17 +11,27 @@
 #define LSB 0x1p-32L
 /* The bounds documented in core/real_fixed.c, in lsb (2^-32), given the exact result ref. */
 #define ROUNDED 0.5L
-static long double sin_cos_bound(long double ref) { (void)ref; return ROUNDED + 0x1p-26L; }
+static long double sin_cos_bound(long double ref)
+{
+    (void)ref;
+    return ROUNDED + 0x1p-26L;
+}
 static long double tan_bound(long double ref) { return ROUNDED + 0x1p-27L * (1.0L + ref * ref); }
 static long double exp_bound(long double ref) { return ROUNDED + 0x1p-26L + fabsl(ref) * 0x1p-59L / LSB; }
-static long double log_bound(long double ref) { (void)ref; return ROUNDED + 0x1p-26L; }
+static long double log_bound(long double ref)
+{
+    (void)ref;
+    return ROUNDED + 0x1p-26L;
+}
 static long double pow_bound(long double ref, long double e)
 {
     return ROUNDED + 0x1p-26L + fabsl(ref) * (fabsl(e) * 0x1p-57L + 0x1p-59L) / LSB;
 }
 
 /* 64-bit LCG (Knuth's MMIX constants): the same samples on every run and platform. */
-typedef struct { uint64_t s; } lcg;
+typedef struct {
+    uint64_t s;
+} lcg;
 static uint64_t lcg_next(lcg *g)
 {
     g->s = g->s * 6364136223846793005u + 1442695040888963407u;
@@ -147,7 +157,7 @@ Test(real_fixed, mul_rounds_to_nearest_and_saturates)
     }
 #endif
     cr_assert_eq(rt_mul(RT_C(1.5), RT_C(-2.5)), RT_C(-3.75));
-    cr_assert_eq(rt_mul(1, RT_C(0.5)), 1);   /* 0.5 lsb rounds away from zero */
+    cr_assert_eq(rt_mul(1, RT_C(0.5)), 1); /* 0.5 lsb rounds away from zero */
     cr_assert_eq(rt_mul(-1, RT_C(0.5)), -1);
     cr_assert_eq(rt_mul(1, RT_C(0.25)), 0);
     cr_assert_eq(rt_mul(RT_C(1e5), RT_C(1e5)), RT_REAL_MAX);
@@ -178,8 +188,8 @@ Test(real_fixed, mul_matches_exact_product_near_rails_and_ties)
     }
 #endif
     cr_assert_eq(rt_mul(RT_ONE, RT_REAL_MAX - 5), RT_REAL_MAX - 5); /* a high word of 2^31 - 1 */
-    cr_assert_eq(rt_mul(-RT_ONE, RT_REAL_MAX), -RT_REAL_MAX);        /* -2^31 */
-    cr_assert_eq(rt_mul(RT_C(0.5), RT_REAL_MAX), INT64_C(1) << 62);  /* 2^62 - 1/2 rounds up */
+    cr_assert_eq(rt_mul(-RT_ONE, RT_REAL_MAX), -RT_REAL_MAX);       /* -2^31 */
+    cr_assert_eq(rt_mul(RT_C(0.5), RT_REAL_MAX), INT64_C(1) << 62); /* 2^62 - 1/2 rounds up */
 }
 
 Test(real_fixed, div_rounds_to_nearest_and_saturates)
@@ -231,7 +241,7 @@ Test(real_fixed, div_round_matches_exact_quotient)
                      (unsigned long long)n, shift, (unsigned long long)d);
     }
 #endif
-    cr_assert_eq(rt_fx_div_round(3, 1, 4), 2);                      /* 1.5 rounds up */
+    cr_assert_eq(rt_fx_div_round(3, 1, 4), 2);                          /* 1.5 rounds up */
     cr_assert_eq(rt_fx_div_round(UINT64_C(1) << 62, 1, 1), UINT64_MAX); /* 2^63 */
     cr_assert_eq(rt_fx_div_round(UINT64_MAX, 62, UINT64_MAX), UINT64_C(1) << 62);
     cr_assert_eq(rt_fx_div_round(0, 32, 7), 0);
@@ -246,8 +256,8 @@ Test(real_fixed, dot3_div_rounds_the_exact_sum_once)
     for (int i = 0; i < 1000000; i++) {
         rt_real v[7];
         for (int k = 0; k < 7; k++) v[k] = lcg_any(&g) / 2;
-        if (i % 3 == 0) v[6] = (v[6] >> 40) | 1;  /* small divisors: large quotients, the rail */
-        if (i % 5 == 0) v[5] = -v[1] / 3;           /* cancellation */
+        if (i % 3 == 0) v[6] = (v[6] >> 40) | 1; /* small divisors: large quotients, the rail */
+        if (i % 5 == 0) v[5] = -v[1] / 3;        /* cancellation */
         if (v[6] == 0) continue;
         __int128 sum = (__int128)v[0] * v[1] + (__int128)v[2] * v[3] + (__int128)v[4] * v[5];
         unsigned __int128 mag = sum < 0 ? -(unsigned __int128)sum : (unsigned __int128)sum;
@@ -286,7 +296,7 @@ Test(real_fixed, sqrt_is_correctly_rounded)
     cr_assert_eq(rt_sqrt(RT_C(2.25)), RT_C(1.5));
     cr_assert_eq(rt_sqrt(0), 0);
     cr_assert_eq(rt_sqrt(-RT_ONE), 0);
-    cr_assert_eq(rt_sqrt(1), 65536); /* sqrt(2^-32) = 2^-16 */
+    cr_assert_eq(rt_sqrt(1), 65536);                              /* sqrt(2^-32) = 2^-16 */
     cr_assert_eq(rt_sqrt(RT_REAL_MAX), INT64_C(199032864766430)); /* round(sqrt(2^63 - 1) * 2^16) */
 }
 
@@ -340,7 +350,7 @@ Test(real_fixed, floor_int_and_unit_to_byte)
 Test(real_fixed, host_conversions)
 {
     cr_assert_eq(rt_from_double(1.5), RT_C(1.5));
-    cr_assert_eq(rt_from_double(-0x1p-33), -1);      /* -0.5 lsb rounds away from zero */
+    cr_assert_eq(rt_from_double(-0x1p-33), -1); /* -0.5 lsb rounds away from zero */
     cr_assert_eq(rt_from_double(0x1p-34), 0);
     cr_assert_eq(rt_from_double(3e9), RT_REAL_MAX);
     cr_assert_eq(rt_from_double(-INFINITY), -RT_REAL_MAX);
@@ -405,7 +415,8 @@ Test(real_fixed, pow_within_bound_on_specular_domain)
             wy = y;
         }
     }
-    cr_log_info("pow: max %.6Lf lsb (%.4Lf of the bound) at %.12Lf ^ %.6Lf", worst, worst_ratio, real_of(wx), real_of(wy));
+    cr_log_info("pow: max %.6Lf lsb (%.4Lf of the bound) at %.12Lf ^ %.6Lf", worst, worst_ratio, real_of(wx),
+                real_of(wy));
     cr_assert(worst_ratio <= 1.0L, "pow: %.6Lf lsb at %.12Lf ^ %.6Lf", worst, real_of(wx), real_of(wy));
 }
 

@@ -9,8 +9,6 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
-#include "image/image_compare.h"
-#include "reference.h"
 
 /* Floors for cornell_ray, a little under what both builds measure (docs/montecarlo.md). */
 #define CORNELL_FULL_FLOOR 32.0
@@ -54,8 +52,8 @@ ParameterizedTest(reference_case *c, reference, matches_solution)
     rtp_image_metrics m;
     cr_assert(rtp_image_compare(&ours, &theirs, &m), "%s: size %ux%u vs solution %ux%u", c->scene, ours.width,
               ours.height, theirs.width, theirs.height);
-    fprintf(stderr, "reference: %-30s PSNR %7.2f dB  within 1: %8.4f%%  within 2: %8.4f%%  max diff %3u\n",
-            c->scene, m.psnr, m.within1_pct, m.within2_pct, m.max_diff);
+    fprintf(stderr, "reference: %-30s PSNR %7.2f dB  within 1: %8.4f%%  within 2: %8.4f%%  max diff %3u\n", c->scene,
+            m.psnr, m.within1_pct, m.within2_pct, m.max_diff);
     cr_expect(m.psnr >= 40.0, "%s: PSNR %.2f dB < 40 dB", c->scene, m.psnr);
     cr_expect(m.within2_pct >= 99.0, "%s: only %.3f%% of channels within 2 levels", c->scene, m.within2_pct);
     rtp_image_free(&ours);

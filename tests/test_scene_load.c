@@ -15,10 +15,7 @@ static char scene_path[256];
 static char err[RTP_ERR_SIZE];
 static rtp_loaded_scene scene;
 
-static void setup(void)
-{
-    cr_assert(tmpdir_make(dir, sizeof dir, "scene"), "cannot create a scratch folder");
-}
+static void setup(void) { cr_assert(tmpdir_make(dir, sizeof dir, "scene"), "cannot create a scratch folder"); }
 
 static void teardown(void)
 {
@@ -246,20 +243,20 @@ Test(scene_load, revolution_texture_reports_the_missing_texture)
 
 /* ---- Hand-written scenes ---- */
 
-#define RED_MATERIAL                                                                                                   \
-    "Materials:\n"                                                                                                     \
-    "    Red:\n"                                                                                                       \
-    "        Shader: Blinn-Phong Shader\n"                                                                             \
-    "        Uniforms:\n"                                                                                              \
+#define RED_MATERIAL                       \
+    "Materials:\n"                         \
+    "    Red:\n"                           \
+    "        Shader: Blinn-Phong Shader\n" \
+    "        Uniforms:\n"                  \
     "            Diffuse: {Color: {A: 1, R: 0.75, G: 0.7, B: 0.12}}\n"
 
-#define ONE_SPHERE                                                                                                     \
-    "Root:\n"                                                                                                          \
-    "    Name: Root\n"                                                                                                 \
-    "    Components: {}\n"                                                                                             \
-    "    Children:\n"                                                                                                  \
-    "        -   Name: Ball\n"                                                                                         \
-    "            Components:\n"                                                                                        \
+#define ONE_SPHERE              \
+    "Root:\n"                   \
+    "    Name: Root\n"          \
+    "    Components: {}\n"      \
+    "    Children:\n"           \
+    "        -   Name: Ball\n"  \
+    "            Components:\n" \
     "                Sphere: {Material: Red}\n"
 
 Test(scene_load, minimal_scene_gets_the_default_camera)
@@ -504,21 +501,22 @@ Test(scene_load, lights_defaults_and_intensity_multiplier)
 
 Test(scene_load, numbers_in_any_spelling)
 {
-    cr_assert(load("Root:\n"
-                   "    Name: Root\n"
-                   "    Components:\n"
-                   "        Camera:\n"
-                   "            FOV: \"45\"\n"
-                   "            Render Width (px): 640.0\n"
-                   "            Render Height (px): 16384\n"
-                   "            Orthographic View Width: 1e1\n"
-                   "            Trace:\n"
-                   "                Shadows: 7\n"
-                   "                Samples Per Pixel: 9\n"
-                   "                Monte Carlo: 2\n"
-                   "                Focus Distance: {Interpolation: 0, FrameTimes: [0, 1], FrameValues: [-7.5e-09, 3]}\n"
-                   "                Maximum Recursion Depth: 0\n"),
-              "%s", err);
+    cr_assert(
+        load("Root:\n"
+             "    Name: Root\n"
+             "    Components:\n"
+             "        Camera:\n"
+             "            FOV: \"45\"\n"
+             "            Render Width (px): 640.0\n"
+             "            Render Height (px): 16384\n"
+             "            Orthographic View Width: 1e1\n"
+             "            Trace:\n"
+             "                Shadows: 7\n"
+             "                Samples Per Pixel: 9\n"
+             "                Monte Carlo: 2\n"
+             "                Focus Distance: {Interpolation: 0, FrameTimes: [0, 1], FrameValues: [-7.5e-09, 3]}\n"
+             "                Maximum Recursion Depth: 0\n"),
+        "%s", err);
     const rt_camera_desc *c = &scene.desc.camera;
     cr_expect_eq(c->fov_degrees, 45.0);
     cr_expect_eq(c->width, 640u);
@@ -650,8 +648,11 @@ Test(scene_load, bad_numbers_are_rejected)
         char yaml[512], message[256];
         snprintf(yaml, sizeof yaml, "Root:\n    Name: Root\n    Components:\n        Camera: {FOV: %s}\n", bad[i]);
         const char *shown = strcmp(bad[i], "''") ? bad[i] : NULL;
-        if (shown) snprintf(message, sizeof message, "Root/Components/Camera/FOV: expected a finite number, got '%s'", shown);
-        else snprintf(message, sizeof message, "Root/Components/Camera/FOV: expected a finite number, got an empty value");
+        if (shown)
+            snprintf(message, sizeof message, "Root/Components/Camera/FOV: expected a finite number, got '%s'", shown);
+        else
+            snprintf(message, sizeof message,
+                     "Root/Components/Camera/FOV: expected a finite number, got an empty value");
         expect_load_error(yaml, 4, 23, message);
     }
 }
@@ -711,8 +712,8 @@ Test(scene_load, references_to_undefined_names)
                       "        Uniforms:\n"
                       "            Diffuse: {Color Map: Marble, Use Texture: true}\n" ONE_SPHERE,
                       5, 34, "Materials/Red/Uniforms/Diffuse/Color Map: no texture named 'Marble' in Textures");
-    expect_load_error(RED_MATERIAL "Root: {Name: R, Components: {TriangleMesh: {Material: Red, Mesh: Pyramid}}}\n",
-                      6, 66, "Root/Components/TriangleMesh/Mesh: no mesh named 'Pyramid' in Meshes, and it is not 'Cube'");
+    expect_load_error(RED_MATERIAL "Root: {Name: R, Components: {TriangleMesh: {Material: Red, Mesh: Pyramid}}}\n", 6,
+                      66, "Root/Components/TriangleMesh/Mesh: no mesh named 'Pyramid' in Meshes, and it is not 'Cube'");
 }
 
 Test(scene_load, unsupported_components)

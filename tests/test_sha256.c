@@ -24,15 +24,9 @@ static void check_digest(const void *data, size_t size, const char *expected)
 }
 
 /* Expected digests: FIPS 180-4 examples (NIST "SHA256.pdf"), confirmed with sha256sum. */
-Test(sha256, empty_message)
-{
-    check_digest("", 0, "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
-}
+Test(sha256, empty_message) { check_digest("", 0, "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855"); }
 
-Test(sha256, abc)
-{
-    check_digest("abc", 3, "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
-}
+Test(sha256, abc) { check_digest("abc", 3, "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad"); }
 
 Test(sha256, two_block_448_bit_message)
 {

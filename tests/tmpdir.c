@@ -18,12 +18,10 @@ bool tmpdir_make(char *path, size_t size, const char *what)
 static void remove_entries(const char *path)
 {
     DIR *d = opendir(path);
-    if (!d)
-        return;
+    if (!d) return;
     struct dirent *e;
     while ((e = readdir(d)) != NULL) {
-        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0)
-            continue;
+        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0) continue;
         char child[4096];
         snprintf(child, sizeof child, "%s/%s", path, e->d_name);
         struct stat st;
@@ -38,19 +36,16 @@ static void remove_entries(const char *path)
 void tmpdir_remove(const char *path)
 {
     /* readdir may skip entries while the folder changes, so empty it until rmdir succeeds. */
-    for (int pass = 0; pass < 8 && rmdir(path) != 0 && errno == ENOTEMPTY; pass++)
-        remove_entries(path);
+    for (int pass = 0; pass < 8 && rmdir(path) != 0 && errno == ENOTEMPTY; pass++) remove_entries(path);
 }
 
 int tmpdir_count(const char *path)
 {
     DIR *d = opendir(path);
-    if (!d)
-        return -1;
+    if (!d) return -1;
     int n = 0;
     struct dirent *e;
-    while ((e = readdir(d)) != NULL)
-        n += strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0;
+    while ((e = readdir(d)) != NULL) n += strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0;
     closedir(d);
     return n;
 }

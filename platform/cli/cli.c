@@ -1,11 +1,11 @@
 /* Argument-parsing helpers; see cli.h. */
 #include "cli/cli.h"
 
+#include "cli/exit_codes.h"
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "cli/exit_codes.h"
 
 bool rtp_cli_parse_u32(const char *s, uint32_t lo, uint32_t hi, uint32_t *out)
 {
@@ -25,9 +25,12 @@ bool rtp_cli_parse_bytes(const char *s, size_t *out)
     char *end;
     unsigned long long v = strtoull(s, &end, 10);
     unsigned shift = 0;
-    if (*end == 'K' || *end == 'k') shift = 10, end++;
-    else if (*end == 'M' || *end == 'm') shift = 20, end++;
-    else if (*end == 'G' || *end == 'g') shift = 30, end++;
+    if (*end == 'K' || *end == 'k')
+        shift = 10, end++;
+    else if (*end == 'M' || *end == 'm')
+        shift = 20, end++;
+    else if (*end == 'G' || *end == 'g')
+        shift = 30, end++;
     if (errno || *end || v == 0 || v > (SIZE_MAX >> shift)) return false;
     *out = (size_t)v << shift;
     return true;
@@ -35,8 +38,10 @@ bool rtp_cli_parse_bytes(const char *s, size_t *out)
 
 int rtp_cli_usage_error(const char *cmd, const char *msg, const char *arg)
 {
-    if (arg) fprintf(stderr, "rtk %s: %s '%s' (see rtk %s --help)\n", cmd, msg, arg, cmd);
-    else fprintf(stderr, "rtk %s: %s (see rtk %s --help)\n", cmd, msg, cmd);
+    if (arg)
+        fprintf(stderr, "rtk %s: %s '%s' (see rtk %s --help)\n", cmd, msg, arg, cmd);
+    else
+        fprintf(stderr, "rtk %s: %s (see rtk %s --help)\n", cmd, msg, cmd);
     return RTP_EXIT_USAGE;
 }
 
@@ -63,7 +68,8 @@ int rtp_cli_scene_option(const char *cmd, int argc, char **argv, int *i, rtp_sce
         if (!val) return -rtp_cli_usage_error(cmd, "missing folder after", arg);
         opt->assets_root = val;
     } else if (!strcmp(arg, "--max-memory")) {
-        if (!rtp_cli_parse_bytes(val, &opt->max_memory)) return -rtp_cli_usage_error(cmd, "expected a size such as 512M after", arg);
+        if (!rtp_cli_parse_bytes(val, &opt->max_memory))
+            return -rtp_cli_usage_error(cmd, "expected a size such as 512M after", arg);
     } else {
         return 0;
     }

@@ -2,10 +2,10 @@
 #ifndef RTP_CLI_H
 #define RTP_CLI_H
 
+#include "load/scene_open.h"
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
-#include "load/scene_open.h"
 
 /* Parses a whole decimal integer in [lo, hi]; false on anything else. */
 bool rtp_cli_parse_u32(const char *s, uint32_t lo, uint32_t hi, uint32_t *out);
@@ -29,12 +29,12 @@ int rtp_cli_scene_argument(const char *cmd, const char *arg, const char **scene)
 /* rtp_scene_open, reporting a failure as "rtk <cmd>: <what went wrong>" on stderr. */
 int rtp_cli_open_scene(const char *cmd, const char *path, const rtp_scene_options *opt, rtp_scene *out);
 
-#define RTP_CLI_SCENE_OPTIONS_HELP \
-    "  --width N           override the camera's Render Width (px), 1..16384\n" \
-    "  --height N          override the camera's Render Height (px), 1..16384\n" \
-    "  --depth N           override Maximum Recursion Depth, 0..64\n" \
-    "  --aa N              override Samples Per Pixel: 4^N samples per pixel, N 0..7\n" \
-    "  --spp N             the same as N samples per pixel, N a power of 4 (1, 4, ..., 16384)\n" \
+#define RTP_CLI_SCENE_OPTIONS_HELP                                                                    \
+    "  --width N           override the camera's Render Width (px), 1..16384\n"                       \
+    "  --height N          override the camera's Render Height (px), 1..16384\n"                      \
+    "  --depth N           override Maximum Recursion Depth, 0..64\n"                                 \
+    "  --aa N              override Samples Per Pixel: 4^N samples per pixel, N 0..7\n"               \
+    "  --spp N             the same as N samples per pixel, N a power of 4 (1, 4, ..., 16384)\n"      \
     "  --assets DIR        the folder that contains assets/ (default: found from the scene's path)\n" \
     "  --max-memory SIZE   cap on scene memory, e.g. 512M or 4G (default 4G)\n"
 

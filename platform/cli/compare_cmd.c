@@ -1,17 +1,16 @@
 /* `rtk compare`: PSNR and difference statistics of two images, a heat map, thresholds. */
 #include "cli/compare_cmd.h"
 
+#include "cli/exit_codes.h"
+#include "debug/json_out.h"
+#include "image/image_compare.h"
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "cli/exit_codes.h"
-#include "debug/json_out.h"
-#include "image/image_compare.h"
 
-static const char usage_line[] =
-    "usage: rtk compare A B [--diff OUT.png] [--min-psnr DB] [--max-diff N] [--json]\n";
+static const char usage_line[] = "usage: rtk compare A B [--diff OUT.png] [--min-psnr DB] [--max-diff N] [--json]\n";
 static const char help_text[] =
     "\n"
     "Compares two images of the same size (PNG or binary PPM, read as 8-bit RGB) and prints\n"
@@ -32,7 +31,7 @@ static const char help_text[] =
 
 typedef struct {
     const char *a, *b, *diff;
-    double min_psnr; /* -INFINITY: no PSNR threshold */
+    double min_psnr;   /* -INFINITY: no PSNR threshold */
     unsigned max_diff; /* 255: no difference threshold */
     bool json;
 } compare_options;
@@ -63,8 +62,7 @@ static int parse_options(int argc, char **argv, compare_options *o)
         bool diff = strcmp(arg, "--diff") == 0, psnr = strcmp(arg, "--min-psnr") == 0,
              max = strcmp(arg, "--max-diff") == 0;
         if (diff || psnr || max) {
-            if (i + 1 >= argc)
-                return usage_error("%s needs a value", arg);
+            if (i + 1 >= argc) return usage_error("%s needs a value", arg);
             const char *value = argv[++i];
             char *end;
             errno = 0;
@@ -90,8 +88,7 @@ static int parse_options(int argc, char **argv, compare_options *o)
             return usage_error("one image too many: '%s'", arg);
         }
     }
-    if (!o->b)
-        return usage_error("%s", "needs two images, A and B");
+    if (!o->b) return usage_error("%s", "needs two images, A and B");
     return -1;
 }
 
@@ -111,9 +108,9 @@ static void print_json(const compare_options *o, const rtp_image_metrics *m)
            "\"within_pct\": {\"0\": %.6f, \"1\": %.6f, \"2\": %.6f, \"8\": %.6f}, "
            "\"pixels_over_2\": %llu, "
            "\"worst\": {\"x\": %u, \"y\": %u, \"a\": [%u, %u, %u], \"b\": [%u, %u, %u]}}\n",
-           m->mean_diff, m->max_diff, m->within0_pct, m->within1_pct, m->within2_pct,
-           m->within8_pct, (unsigned long long)m->pixels_over2, m->worst_x, m->worst_y,
-           m->worst_a[0], m->worst_a[1], m->worst_a[2], m->worst_b[0], m->worst_b[1], m->worst_b[2]);
+           m->mean_diff, m->max_diff, m->within0_pct, m->within1_pct, m->within2_pct, m->within8_pct,
+           (unsigned long long)m->pixels_over2, m->worst_x, m->worst_y, m->worst_a[0], m->worst_a[1], m->worst_a[2],
+           m->worst_b[0], m->worst_b[1], m->worst_b[2]);
 }
 
 static void print_text(const compare_options *o, const rtp_image_metrics *m)
@@ -125,11 +122,11 @@ static void print_text(const compare_options *o, const rtp_image_metrics *m)
         printf("PSNR           %.3f dB\n", m->psnr);
     printf("mean diff      %.4f levels\n", m->mean_diff);
     printf("max diff       %u levels\n", m->max_diff);
-    printf("within 0/1/2/8 %.3f%%  %.3f%%  %.3f%%  %.3f%% of channels\n", m->within0_pct,
-           m->within1_pct, m->within2_pct, m->within8_pct);
+    printf("within 0/1/2/8 %.3f%%  %.3f%%  %.3f%%  %.3f%% of channels\n", m->within0_pct, m->within1_pct,
+           m->within2_pct, m->within8_pct);
     printf("pixels > 2     %llu\n", (unsigned long long)m->pixels_over2);
-    printf("worst pixel    x %u, y %u: A (%u, %u, %u)  B (%u, %u, %u)\n", m->worst_x, m->worst_y,
-           m->worst_a[0], m->worst_a[1], m->worst_a[2], m->worst_b[0], m->worst_b[1], m->worst_b[2]);
+    printf("worst pixel    x %u, y %u: A (%u, %u, %u)  B (%u, %u, %u)\n", m->worst_x, m->worst_y, m->worst_a[0],
+           m->worst_a[1], m->worst_a[2], m->worst_b[0], m->worst_b[1], m->worst_b[2]);
 }
 
 /* Reads, measures, reports and writes the heat map; returns the exit code. */
@@ -142,8 +139,8 @@ static int run(const compare_options *o, rtp_image *a, rtp_image *b)
     }
     rtp_image_metrics m;
     if (!rtp_image_compare(a, b, &m)) {
-        fprintf(stderr, "rtk compare: %s is %ux%u but %s is %ux%u\n", o->a, a->width, a->height,
-                o->b, b->width, b->height);
+        fprintf(stderr, "rtk compare: %s is %ux%u but %s is %ux%u\n", o->a, a->width, a->height, o->b, b->width,
+                b->height);
         return RTP_EXIT_INPUT;
     }
     if (o->json)
@@ -180,8 +177,7 @@ int rtp_cmd_compare(int argc, char **argv)
 {
     compare_options o;
     int code = parse_options(argc, argv, &o);
-    if (code >= 0)
-        return code;
+    if (code >= 0) return code;
     rtp_image a = {0}, b = {0};
     code = run(&o, &a, &b);
     rtp_image_free(&a);

@@ -1,14 +1,14 @@
 /* `rtk debug`: every ray behind one pixel, and why its colour came out as it did. */
 #include "cli/debug_cmd.h"
 
+#include "cli/cli.h"
+#include "cli/exit_codes.h"
+#include "debug/debug_output.h"
+#include "thread/threads.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
-#include "cli/cli.h"
-#include "debug/debug_output.h"
-#include "cli/exit_codes.h"
-#include "thread/threads.h"
 
 /* Rays (and light records) logged per run: far more than a Whitted tree of one pixel
  * needs at the default settings; deep, many-light or heavily sampled pixels are cut
@@ -27,9 +27,7 @@ static const char usage[] =
     "  --sample K          trace only sample K (0 .. samples per pixel - 1)\n"
     "  --json              print the ray tree as one JSON document instead of text\n"
     "  --svg FILE          also draw it: the image with the pixel marked, and the rays\n"
-    "                      projected on the Z-Y (side) and X-Z (top) planes\n"
-    RTP_CLI_SCENE_OPTIONS_HELP
-    "\n"
+    "                      projected on the Z-Y (side) and X-Z (top) planes\n" RTP_CLI_SCENE_OPTIONS_HELP "\n"
     "Exit codes: 0 ok, 2 bad arguments (including a pixel outside the image), 3 bad or\n"
     "missing input file, 4 SVG not writable, 5 over the memory cap.\n";
 
@@ -48,7 +46,8 @@ static bool parse_pixel(const char *s, uint32_t width, uint32_t height, uint32_t
     if (!comma || strlen(s) >= sizeof buf) return false;
     memcpy(buf, s, (size_t)(comma - s));
     buf[comma - s] = '\0';
-    return width > 0 && height > 0 && rtp_cli_parse_u32(buf, 0, width - 1, x) && rtp_cli_parse_u32(comma + 1, 0, height - 1, y);
+    return width > 0 && height > 0 && rtp_cli_parse_u32(buf, 0, width - 1, x) &&
+           rtp_cli_parse_u32(comma + 1, 0, height - 1, y);
 }
 
 static int parse_args(int argc, char **argv, debug_args *a)
@@ -149,8 +148,10 @@ int rtp_cmd_debug(int argc, char **argv)
     }
     if (pt.log.overflow)
         fprintf(stderr, "rtk debug: the ray log is full: only the first %u rays are shown\n", LOG_CAPACITY);
-    if (a.json) rtp_debug_print_json(stdout, &pt);
-    else rtp_debug_print_text(stdout, &pt);
+    if (a.json)
+        rtp_debug_print_json(stdout, &pt);
+    else
+        rtp_debug_print_text(stdout, &pt);
     if (a.svg) rc = write_svg(&a, &pt);
     rtp_pixel_trace_free(&pt);
     rtp_scene_close(&built);

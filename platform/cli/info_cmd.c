@@ -1,27 +1,24 @@
 /* `rtk info`: what a scene file holds once loaded and built, and what it costs. */
 #include "cli/info_cmd.h"
 
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
 #include "cli/cli.h"
 #include "cli/exit_codes.h"
 #include "debug/json_out.h"
-#include "render.h"
 #include "debug/scene_stats.h"
+#include "render.h"
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
-static const char usage[] =
-    "usage: rtk info SCENE.yaml [--json] [options]\n"
-    "\n"
-    "Loads and builds a scene and prints what the tracer sees: nodes, primitives by kind\n"
-    "(triangles after Loop subdivision), lights by kind, trace-compatible materials,\n"
-    "the textures they use (with sizes), camera and trace settings, the BVH's node count,\n"
-    "depth and SAH cost, and the scene memory (arena) used.\n"
-    "\n"
-    "  --json              one JSON document instead of text\n"
-    RTP_CLI_SCENE_OPTIONS_HELP
-    "\n"
-    "Exit codes: 0 ok, 2 bad arguments, 3 bad or missing input file, 5 over the memory cap.\n";
+static const char usage[] = "usage: rtk info SCENE.yaml [--json] [options]\n"
+                            "\n"
+                            "Loads and builds a scene and prints what the tracer sees: nodes, primitives by kind\n"
+                            "(triangles after Loop subdivision), lights by kind, trace-compatible materials,\n"
+                            "the textures they use (with sizes), camera and trace settings, the BVH's node count,\n"
+                            "depth and SAH cost, and the scene memory (arena) used.\n"
+                            "\n"
+                            "  --json              one JSON document instead of text\n" RTP_CLI_SCENE_OPTIONS_HELP "\n"
+                            "Exit codes: 0 ok, 2 bad arguments, 3 bad or missing input file, 5 over the memory cap.\n";
 
 static const char *const shadow_modes[] = {"none", "opaque", "coloured"};
 static const char *const monte_carlo_modes[] = {"off", "mode 1", "mode 2"};
@@ -52,15 +49,9 @@ static int parse_args(int argc, char **argv, info_args *a)
     return RTP_EXIT_OK;
 }
 
-static double d(rt_real r)
-{
-    return rt_to_double(r);
-}
+static double d(rt_real r) { return rt_to_double(r); }
 
-static const char *plural(uint64_t n)
-{
-    return n == 1 ? "" : "s";
-}
+static const char *plural(uint64_t n) { return n == 1 ? "" : "s"; }
 
 static void print_text(const char *path, const rtp_scene *b, const rtp_scene_stats *st)
 {
@@ -78,8 +69,8 @@ static void print_text(const char *path, const rtp_scene *b, const rtp_scene_sta
     for (uint32_t i = 0; i < s->material_count; i++) printf("              %s\n", b->loaded.material_names[i]);
     printf("textures    %u used by traced materials\n", s->texture_count);
     for (uint32_t i = 0; i < s->texture_count; i++)
-        printf("              %s: %ux%u, %s\n", b->loaded.texture_names[i], s->textures[i].width,
-               s->textures[i].height, s->textures[i].bilinear ? "bilinear" : "nearest");
+        printf("              %s: %ux%u, %s\n", b->loaded.texture_names[i], s->textures[i].width, s->textures[i].height,
+               s->textures[i].bilinear ? "bilinear" : "nearest");
     if (cam->perspective)
         printf("camera      perspective, vertical FOV %.9g degrees", d(b->loaded.desc.camera.fov_degrees));
     else
@@ -143,13 +134,13 @@ static void print_json(const char *path, const rtp_scene *b, const rtp_scene_sta
     json_vec(cam->up);
     printf("},\n \"trace\": {\"max_depth\": %u, \"shadows\": \"%s\", \"reflections\": %s, \"refractions\": %s, "
            "\"samples_per_pixel\": %u, \"monte_carlo\": %u, \"focus_distance\": ",
-           t->max_depth, shadow_modes[t->shadows], t->reflections ? "true" : "false",
-           t->refractions ? "true" : "false", rt_camera_samples(cam), t->monte_carlo);
+           t->max_depth, shadow_modes[t->shadows], t->reflections ? "true" : "false", t->refractions ? "true" : "false",
+           rt_camera_samples(cam), t->monte_carlo);
     rtp_json_number(stdout, d(t->focus_distance));
     printf(", \"aperture_size\": ");
     rtp_json_number(stdout, d(t->aperture_size));
-    printf("},\n \"bvh\": {\"nodes\": %u, \"leaves\": %u, \"depth\": %u, \"sah_cost\": ", st->bvh_nodes,
-           st->bvh_leaves, st->bvh_depth);
+    printf("},\n \"bvh\": {\"nodes\": %u, \"leaves\": %u, \"depth\": %u, \"sah_cost\": ", st->bvh_nodes, st->bvh_leaves,
+           st->bvh_depth);
     rtp_json_number(stdout, st->sah_cost);
     printf("},\n \"arena\": {\"used\": %zu, \"high_water\": %zu, \"capacity\": %zu}\n}\n", st->arena_used,
            st->arena_high_water, st->arena_capacity);
@@ -165,8 +156,10 @@ int rtp_cmd_info(int argc, char **argv)
     if (rc != RTP_EXIT_OK) return rc;
     rtp_scene_stats st;
     rtp_scene_stats_compute(&built, &st);
-    if (a.json) print_json(a.scene, &built, &st);
-    else print_text(a.scene, &built, &st);
+    if (a.json)
+        print_json(a.scene, &built, &st);
+    else
+        print_text(a.scene, &built, &st);
     rtp_scene_close(&built);
     return RTP_EXIT_OK;
 }

@@ -1,28 +1,27 @@
 /* rtk: the command line. Dispatches to one subcommand per file. */
-#include <stdio.h>
-#include <string.h>
 #include "cli/compare_cmd.h"
 #include "cli/debug_cmd.h"
 #include "cli/exit_codes.h"
 #include "cli/info_cmd.h"
 #include "cli/pack_cmd.h"
 #include "cli/render_cmd.h"
+#include <stdio.h>
+#include <string.h>
 
-static const char usage[] =
-    "usage: rtk COMMAND [ARGS]\n"
-    "\n"
-    "rtk is a ray tracer for the CSE457 scene format whose renders are bitwise\n"
-    "reproducible.\n"
-    "\n"
-    "commands:\n"
-    "  render SCENE.yaml -o OUT.png   render a scene (rtk render --help)\n"
-    "  compare A B                    compare two images (rtk compare --help)\n"
-    "  debug SCENE.yaml --pixel X,Y   every ray behind one pixel (rtk debug --help)\n"
-    "  info SCENE.yaml                what a scene holds and costs (rtk info --help)\n"
-    "  pack SCENE.yaml -o OUT         the scene as one blob for bare-metal and cross builds\n"
-    "\n"
-    "Exit codes: 0 ok, 1 compare threshold not met, 2 bad arguments, 3 bad or missing\n"
-    "input file, 4 output not writable, 5 over the memory cap, 6 interrupted.\n";
+static const char usage[] = "usage: rtk COMMAND [ARGS]\n"
+                            "\n"
+                            "rtk is a ray tracer for the CSE457 scene format whose renders are bitwise\n"
+                            "reproducible.\n"
+                            "\n"
+                            "commands:\n"
+                            "  render SCENE.yaml -o OUT.png   render a scene (rtk render --help)\n"
+                            "  compare A B                    compare two images (rtk compare --help)\n"
+                            "  debug SCENE.yaml --pixel X,Y   every ray behind one pixel (rtk debug --help)\n"
+                            "  info SCENE.yaml                what a scene holds and costs (rtk info --help)\n"
+                            "  pack SCENE.yaml -o OUT         the scene as one blob for bare-metal and cross builds\n"
+                            "\n"
+                            "Exit codes: 0 ok, 1 compare threshold not met, 2 bad arguments, 3 bad or missing\n"
+                            "input file, 4 output not writable, 5 over the memory cap, 6 interrupted.\n";
 
 int main(int argc, char **argv)
 {

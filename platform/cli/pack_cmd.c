@@ -3,27 +3,24 @@
  * the bare-metal image. */
 #include "cli/pack_cmd.h"
 
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
 #include "blob.h"
 #include "cli/cli.h"
 #include "cli/exit_codes.h"
-#include "image/image.h"
 #include "image/file_write.h"
+#include "image/image.h"
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
-static const char usage[] =
-    "usage: rtk pack SCENE.yaml -o OUT.rtscene [options]\n"
-    "\n"
-    "Writes the scene, with its meshes and textures and the overrides below applied, as\n"
-    "one blob that core/blob.h reads. The blob holds this build's scalar type (double or\n"
-    "fixed): a build of the other type rejects it.\n"
-    "\n"
-    "  -o, --output FILE   the blob to write (atomically)\n"
-    RTP_CLI_SCENE_OPTIONS_HELP
-    "\n"
-    "Exit codes: 0 ok, 2 bad arguments, 3 bad or missing input file, 4 output not\n"
-    "writable, 5 over the memory cap.\n";
+static const char usage[] = "usage: rtk pack SCENE.yaml -o OUT.rtscene [options]\n"
+                            "\n"
+                            "Writes the scene, with its meshes and textures and the overrides below applied, as\n"
+                            "one blob that core/blob.h reads. The blob holds this build's scalar type (double or\n"
+                            "fixed): a build of the other type rejects it.\n"
+                            "\n"
+                            "  -o, --output FILE   the blob to write (atomically)\n" RTP_CLI_SCENE_OPTIONS_HELP "\n"
+                            "Exit codes: 0 ok, 2 bad arguments, 3 bad or missing input file, 4 output not\n"
+                            "writable, 5 over the memory cap.\n";
 
 int rtp_cmd_pack(int argc, char **argv)
 {

@@ -1,17 +1,17 @@
 /* `rtk render`: scene file in, image file (and/or render hash) out. */
 #include "cli/render_cmd.h"
 
+#include "cli/cli.h"
+#include "cli/exit_codes.h"
+#include "image/image.h"
+#include "load/scene_open.h"
+#include "sha256.h"
+#include "thread/threads.h"
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
-#include "cli/cli.h"
-#include "cli/exit_codes.h"
-#include "image/image.h"
-#include "thread/threads.h"
-#include "load/scene_open.h"
-#include "sha256.h"
 
 static volatile int interrupted;
 
@@ -21,24 +21,22 @@ static void on_signal(int sig)
     interrupted = 1;
 }
 
-static const char usage[] =
-    "usage: rtk render SCENE.yaml [-o OUT.png|OUT.ppm] [options]\n"
-    "\n"
-    "Renders a CSE457 scene file. The output format follows the file name (.png, else\n"
-    "binary PPM); the file is written atomically, or not at all on error.\n"
-    "\n"
-    "  -o, --output FILE   image to write (optional with --hash)\n"
-    RTP_CLI_SCENE_OPTIONS_HELP
-    "  --threads N         worker threads for the BVH build and the render (default: all\n"
-    "                      cores); the image does not depend on it\n"
-    "  --tile N            tile side in pixels (default 32); the image does not depend on it\n"
-    "  --hash              print the render hash (SHA-256 of the P6 PPM bytes) on stdout\n"
-    "  --no-bvh            test every primitive for every ray (slow; the image is identical)\n"
-    "  --quiet             no progress bar\n"
-    "  --progress          progress bar even when stderr is not a terminal\n"
-    "\n"
-    "Exit codes: 0 ok, 2 bad arguments, 3 bad or missing input file, 4 output not\n"
-    "writable, 5 over the memory cap, 6 interrupted.\n";
+static const char usage[] = "usage: rtk render SCENE.yaml [-o OUT.png|OUT.ppm] [options]\n"
+                            "\n"
+                            "Renders a CSE457 scene file. The output format follows the file name (.png, else\n"
+                            "binary PPM); the file is written atomically, or not at all on error.\n"
+                            "\n"
+                            "  -o, --output FILE   image to write (optional with --hash)\n" RTP_CLI_SCENE_OPTIONS_HELP
+                            "  --threads N         worker threads for the BVH build and the render (default: all\n"
+                            "                      cores); the image does not depend on it\n"
+                            "  --tile N            tile side in pixels (default 32); the image does not depend on it\n"
+                            "  --hash              print the render hash (SHA-256 of the P6 PPM bytes) on stdout\n"
+                            "  --no-bvh            test every primitive for every ray (slow; the image is identical)\n"
+                            "  --quiet             no progress bar\n"
+                            "  --progress          progress bar even when stderr is not a terminal\n"
+                            "\n"
+                            "Exit codes: 0 ok, 2 bad arguments, 3 bad or missing input file, 4 output not\n"
+                            "writable, 5 over the memory cap, 6 interrupted.\n";
 
 typedef struct {
     const char *scene, *output;
@@ -63,10 +61,12 @@ static int parse_args(int argc, char **argv, render_args *a)
             if (!val) return rtp_cli_usage_error("render", "missing file after", arg);
             a->output = val, i++;
         } else if (!strcmp(arg, "--threads")) {
-            if (!rtp_cli_parse_u32(val, 1, 1024, &n)) return rtp_cli_usage_error("render", "expected 1..1024 after", arg);
+            if (!rtp_cli_parse_u32(val, 1, 1024, &n))
+                return rtp_cli_usage_error("render", "expected 1..1024 after", arg);
             a->parallel.threads = a->build.threads = n, i++;
         } else if (!strcmp(arg, "--tile")) {
-            if (!rtp_cli_parse_u32(val, 1, 4096, &n)) return rtp_cli_usage_error("render", "expected 1..4096 after", arg);
+            if (!rtp_cli_parse_u32(val, 1, 4096, &n))
+                return rtp_cli_usage_error("render", "expected 1..4096 after", arg);
             a->parallel.tile_size = n, i++;
         } else if (!strcmp(arg, "--hash")) {
             a->hash = true;

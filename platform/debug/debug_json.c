@@ -6,10 +6,7 @@
 
 #include "debug/json_out.h"
 
-static void num(FILE *out, rt_real r)
-{
-    rtp_json_number(out, rt_to_double(r));
-}
+static void num(FILE *out, rt_real r) { rtp_json_number(out, rt_to_double(r)); }
 
 static void vec(FILE *out, rt_vec3 v)
 {
@@ -23,15 +20,9 @@ static void vec(FILE *out, rt_vec3 v)
 }
 
 /* ", \"name\": " */
-static void key(FILE *out, const char *name)
-{
-    fprintf(out, ", \"%s\": ", name);
-}
+static void key(FILE *out, const char *name) { fprintf(out, ", \"%s\": ", name); }
 
-static void newline(FILE *out, unsigned level)
-{
-    fprintf(out, "\n%*s", (int)(2 * level), "");
-}
+static void newline(FILE *out, unsigned level) { fprintf(out, "\n%*s", (int)(2 * level), ""); }
 
 static void hit(FILE *out, const rtp_pixel_trace *pt, const rt_ray_record *r)
 {
@@ -41,8 +32,10 @@ static void hit(FILE *out, const rtp_pixel_trace *pt, const rt_ray_record *r)
     fprintf(out, ", \"object\": %u, \"primitive\": ", r->surface.object);
     rtp_json_string(out, n.primitive);
     key(out, "part");
-    if (n.part) rtp_json_string(out, n.part);
-    else fputs("null", out);
+    if (n.part)
+        rtp_json_string(out, n.part);
+    else
+        fputs("null", out);
     key(out, "triangle");
     if (n.triangle == UINT32_MAX) {
         fputs("null", out);
@@ -167,11 +160,15 @@ static void ray(FILE *out, const rtp_pixel_trace *pt, uint32_t id, unsigned leve
         fprintf(out, ", \"mirror_fallback\": %s", r->mirror_fallback ? "true" : "false");
     }
     key(out, "hit");
-    if (r->hit) hit(out, pt, r);
-    else fputs("null", out);
+    if (r->hit)
+        hit(out, pt, r);
+    else
+        fputs("null", out);
     key(out, "light_hit");
-    if (r->on_light) light_hit(out, pt, r);
-    else fputs("null", out);
+    if (r->on_light)
+        light_hit(out, pt, r);
+    else
+        fputs("null", out);
     key(out, "lights");
     fputc('[', out);
     for (uint32_t j = pt->first_light[id]; j != RT_NO_PARENT; j = pt->next_light[j]) {
@@ -193,8 +190,10 @@ void rtp_debug_print_json(FILE *out, const rtp_pixel_trace *pt)
     const rt_camera *cam = &pt->built->scene.camera;
     fprintf(out, "{\"pixel\": [%u, %u], \"image\": [%u, %u], \"samples_per_pixel\": %u, \"sample\": ", pt->x, pt->y,
             cam->width, cam->height, pt->samples);
-    if (pt->sample == RTP_PIXEL_ALL_SAMPLES) fputs("null", out);
-    else fprintf(out, "%u", pt->sample);
+    if (pt->sample == RTP_PIXEL_ALL_SAMPLES)
+        fputs("null", out);
+    else
+        fprintf(out, "%u", pt->sample);
     fprintf(out, ", \"max_depth\": %u, \"log_full\": %s,", cam->trace.max_depth, pt->log.overflow ? "true" : "false");
     newline(out, 1);
     fputs("\"samples\": ", out);

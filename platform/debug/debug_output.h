@@ -2,9 +2,9 @@
 #ifndef RTP_DEBUG_OUTPUT_H
 #define RTP_DEBUG_OUTPUT_H
 
-#include <stdio.h>
-#include "image/image.h"
 #include "debug/pixel_trace.h"
+#include "image/image.h"
+#include <stdio.h>
 
 void rtp_debug_print_text(FILE *out, const rtp_pixel_trace *pt);
 /* One JSON document; non-finite numbers are null. */
@@ -12,6 +12,6 @@ void rtp_debug_print_json(FILE *out, const rtp_pixel_trace *pt);
 /* Writes an SVG (atomically) with `render` (the scene's image) and the pixel marked, and the
  * ray tree projected on two planes over the objects' outlines. False with one line in err. */
 bool rtp_debug_write_svg(const char *path, const rtp_pixel_trace *pt, const rtp_image *render, char *err,
-                        size_t err_size);
+                         size_t err_size);
 
 #endif

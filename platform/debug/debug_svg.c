@@ -2,32 +2,31 @@
  * tree projected on the Z-Y (side) and X-Z (top) planes over the objects' outlines. */
 #include "debug/debug_output.h"
 
-#include <math.h>
-#include <stdlib.h>
 #include "debug/svg_view.h"
 #include "image/file_write.h"
+#include <math.h>
+#include <stdlib.h>
 
-#define PANEL 400.0  /* side of each panel, in page units */
+#define PANEL 400.0 /* side of each panel, in page units */
 #define GAP 24.0
-#define TOP 56.0     /* the panels' top edge, below the title */
+#define TOP 56.0                  /* the panels' top edge, below the title */
 #define MAX_EDGES_TRIANGLES 20000 /* above this, meshes are drawn as boxes */
 
-static const char style[] =
-    "<style>\n"
-    "text{font:13px sans-serif;fill:#222}\n"
-    ".frame{fill:#fafafa;stroke:#999}\n"
-    ".mesh,.quadric,.cap{fill:none;stroke:#9a9a9a;stroke-width:0.6}\n"
-    ".cap{stroke-dasharray:2 2}\n"
-    ".ray{stroke-width:1.4;fill:none}\n"
-    ".camera{stroke:#1f5fbf;fill:#1f5fbf}\n"
-    ".reflection{stroke:#1a9850;fill:#1a9850}\n"
-    ".refraction{stroke:#d7301f;fill:#d7301f}\n"
-    ".shadow{stroke:#e69500;fill:#e69500;stroke-dasharray:5 3}\n"
-    ".diffuse{stroke:#7b3fa0;fill:#7b3fa0}\n"
-    ".glossy{stroke:#0f9d9a;fill:#0f9d9a}\n"
-    ".light{fill:#ffd700;stroke:#8a6d00}\n"
-    ".mark{fill:none;stroke-width:2}\n"
-    "</style>\n";
+static const char style[] = "<style>\n"
+                            "text{font:13px sans-serif;fill:#222}\n"
+                            ".frame{fill:#fafafa;stroke:#999}\n"
+                            ".mesh,.quadric,.cap{fill:none;stroke:#9a9a9a;stroke-width:0.6}\n"
+                            ".cap{stroke-dasharray:2 2}\n"
+                            ".ray{stroke-width:1.4;fill:none}\n"
+                            ".camera{stroke:#1f5fbf;fill:#1f5fbf}\n"
+                            ".reflection{stroke:#1a9850;fill:#1a9850}\n"
+                            ".refraction{stroke:#d7301f;fill:#d7301f}\n"
+                            ".shadow{stroke:#e69500;fill:#e69500;stroke-dasharray:5 3}\n"
+                            ".diffuse{stroke:#7b3fa0;fill:#7b3fa0}\n"
+                            ".glossy{stroke:#0f9d9a;fill:#0f9d9a}\n"
+                            ".light{fill:#ffd700;stroke:#8a6d00}\n"
+                            ".mark{fill:none;stroke-width:2}\n"
+                            "</style>\n";
 
 static void base64(FILE *out, const uint8_t *data, size_t size)
 {
@@ -154,8 +153,8 @@ static void projection(FILE *out, const rtp_pixel_trace *pt, const rt_aabb *boun
         double p[3], x, y;
         to_doubles(scene->lights[i].position, p);
         rtp_svg_view_map(v, p, &x, &y);
-        fprintf(out, "<circle class=\"light\" cx=\"%.1f\" cy=\"%.1f\" r=\"5\"><title>light %u</title></circle>\n", x,
-                y, i);
+        fprintf(out, "<circle class=\"light\" cx=\"%.1f\" cy=\"%.1f\" r=\"5\"><title>light %u</title></circle>\n", x, y,
+                i);
         if (scene->lights[i].kind == RT_LIGHT_AREA) area_light(out, v, &scene->lights[i]);
     }
     for (uint32_t i = 0; i < pt->log.ray_count; i++) draw_ray(out, v, &pt->log.rays[i]);
@@ -171,16 +170,17 @@ static bool image_panel(FILE *out, const rtp_pixel_trace *pt, const rtp_image *i
     double w = s * img->width, h = s * img->height, left = GAP;
     fprintf(out, "<text x=\"%.0f\" y=\"%.0f\">image %ux%u, pixel (%u, %u)</text>\n", left, TOP - 8, img->width,
             img->height, pt->x, pt->y);
-    fprintf(out, "<image x=\"%.0f\" y=\"%.0f\" width=\"%.1f\" height=\"%.1f\" preserveAspectRatio=\"none\" "
-                 "style=\"image-rendering:pixelated\" xlink:href=\"data:image/png;base64,",
+    fprintf(out,
+            "<image x=\"%.0f\" y=\"%.0f\" width=\"%.1f\" height=\"%.1f\" preserveAspectRatio=\"none\" "
+            "style=\"image-rendering:pixelated\" xlink:href=\"data:image/png;base64,",
             left, TOP, w, h);
     base64(out, png, size);
     free(png);
     fputs("\"/>\n", out);
     /* The pixel itself, and two rings (dark and light) that show on any background. */
     double x = left + s * pt->x, y = TOP + s * pt->y, cell = s > 1 ? s : 1;
-    fprintf(out, "<rect class=\"mark\" x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" stroke=\"#00e5ff\"/>\n",
-            x, y, cell, cell);
+    fprintf(out, "<rect class=\"mark\" x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" stroke=\"#00e5ff\"/>\n", x,
+            y, cell, cell);
     x += cell / 2, y += cell / 2;
     fprintf(out, "<circle class=\"mark\" cx=\"%.2f\" cy=\"%.2f\" r=\"9\" stroke=\"#000\"/>\n", x, y);
     fprintf(out, "<circle class=\"mark\" cx=\"%.2f\" cy=\"%.2f\" r=\"11\" stroke=\"#fff\"/>\n", x, y);
@@ -192,14 +192,15 @@ static void legend(FILE *out, double y)
     double x = GAP;
     for (rt_ray_kind k = RT_RAY_CAMERA; k <= RT_RAY_GLOSSY; k++, x += 130) {
         const char *kind = rtp_pixel_trace_ray_kind(k);
-        fprintf(out, "<line class=\"ray %s\" x1=\"%.0f\" y1=\"%.0f\" x2=\"%.0f\" y2=\"%.0f\"/>", kind, x, y - 4,
-                x + 28, y - 4);
+        fprintf(out, "<line class=\"ray %s\" x1=\"%.0f\" y1=\"%.0f\" x2=\"%.0f\" y2=\"%.0f\"/>", kind, x, y - 4, x + 28,
+                y - 4);
         fprintf(out, "<text x=\"%.0f\" y=\"%.0f\">%s ray</text>\n", x + 34, y, kind);
     }
     fprintf(out, "<circle class=\"light\" cx=\"%.0f\" cy=\"%.0f\" r=\"5\"/>", x + 8, y - 4);
     fprintf(out, "<text x=\"%.0f\" y=\"%.0f\">light (and area square)</text>\n", x + 18, y);
-    fprintf(out, "<line class=\"mesh\" x1=\"%.0f\" y1=\"%.0f\" x2=\"%.0f\" y2=\"%.0f\"/><text x=\"%.0f\" y=\"%.0f\">"
-                 "object outline (dots: hits)</text>\n",
+    fprintf(out,
+            "<line class=\"mesh\" x1=\"%.0f\" y1=\"%.0f\" x2=\"%.0f\" y2=\"%.0f\"/><text x=\"%.0f\" y=\"%.0f\">"
+            "object outline (dots: hits)</text>\n",
             x + 180, y - 4, x + 208, y - 4, x + 214, y);
 }
 
@@ -207,10 +208,11 @@ static bool draw(FILE *out, const rtp_pixel_trace *pt, const rtp_image *img, con
                  size_t err_size)
 {
     double width = 4 * GAP + 3 * PANEL, height = TOP + PANEL + 2 * GAP + 8, lo[3], hi[3];
-    fprintf(out, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-                 "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\" "
-                 "width=\"%.0f\" height=\"%.0f\" viewBox=\"0 0 %.0f %.0f\">\n%s"
-                 "<rect width=\"100%%\" height=\"100%%\" fill=\"#fff\"/>\n",
+    fprintf(out,
+            "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\" "
+            "width=\"%.0f\" height=\"%.0f\" viewBox=\"0 0 %.0f %.0f\">\n%s"
+            "<rect width=\"100%%\" height=\"100%%\" fill=\"#fff\"/>\n",
             width, height, width, height, style);
     fprintf(out, "<text x=\"%.0f\" y=\"22\" style=\"font-weight:bold\">rtk debug: pixel (%u, %u), %u ray%s%s</text>\n",
             GAP, pt->x, pt->y, pt->log.ray_count, pt->log.ray_count == 1 ? "" : "s",
@@ -227,7 +229,7 @@ static bool draw(FILE *out, const rtp_pixel_trace *pt, const rtp_image *img, con
 }
 
 bool rtp_debug_write_svg(const char *path, const rtp_pixel_trace *pt, const rtp_image *render, char *err,
-                        size_t err_size)
+                         size_t err_size)
 {
     char *text = NULL;
     size_t size = 0;

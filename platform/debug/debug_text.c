@@ -9,10 +9,7 @@ static void vec(FILE *out, rt_vec3 v)
     fprintf(out, "(" NUM ", " NUM ", " NUM ")", rt_to_double(v.x), rt_to_double(v.y), rt_to_double(v.z));
 }
 
-static void indent(FILE *out, unsigned level)
-{
-    fprintf(out, "%*s", (int)(2 * level), "");
-}
+static void indent(FILE *out, unsigned level) { fprintf(out, "%*s", (int)(2 * level), ""); }
 
 static void print_hit(FILE *out, const rtp_pixel_trace *pt, const rt_ray_record *r, unsigned level)
 {
@@ -66,7 +63,8 @@ static void print_light(FILE *out, const rtp_pixel_trace *pt, uint32_t j, unsign
 {
     const rt_light_record *l = &pt->log.lights[j];
     indent(out, level);
-    fprintf(out, "light %u (%s): ambient ", l->light, rtp_pixel_trace_light_kind(pt->built->scene.lights[l->light].kind));
+    fprintf(out, "light %u (%s): ambient ", l->light,
+            rtp_pixel_trace_light_kind(pt->built->scene.lights[l->light].kind));
     vec(out, l->ambient);
     fprintf(out, "  N.L " NUM "  N.H " NUM "\n", rt_to_double(l->n_dot_l), rt_to_double(l->n_dot_h));
     indent(out, level + 1);
@@ -139,6 +137,6 @@ void rtp_debug_print_text(FILE *out, const rtp_pixel_trace *pt)
                 pt->log.ray_capacity, pt->log.light_capacity);
     fprintf(out, "\npixel (%u, %u): colour ", pt->x, pt->y);
     vec(out, pt->color);
-    fprintf(out, "%s-> bytes %u %u %u\n", pt->samples > 1 ? " (average of the samples) " : " ", pt->rgb[0],
-            pt->rgb[1], pt->rgb[2]);
+    fprintf(out, "%s-> bytes %u %u %u\n", pt->samples > 1 ? " (average of the samples) " : " ", pt->rgb[0], pt->rgb[1],
+            pt->rgb[2]);
 }

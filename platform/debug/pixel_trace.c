@@ -42,7 +42,7 @@ static void link_tree(rtp_pixel_trace *pt)
 }
 
 bool rtp_pixel_trace_run(rtp_pixel_trace *pt, const rtp_scene *built, uint32_t x, uint32_t y, uint32_t sample,
-                        uint32_t capacity)
+                         uint32_t capacity)
 {
     const rt_scene *scene = &built->scene;
     memset(pt, 0, sizeof *pt);
@@ -118,7 +118,7 @@ rtp_hit_material rtp_pixel_trace_material(const rtp_pixel_trace *pt, const rt_ra
     const rt_material *m = &s->materials[r->surface.material];
     rt_vec2 uv = r->surface.uv;
     rtp_hit_material h = {rt_surface_channel(s, &m->diffuse, uv), rt_surface_channel(s, &m->specular, uv),
-                         rt_surface_channel(s, &m->transmittance, uv), m->shininess, m->index_of_refraction};
+                          rt_surface_channel(s, &m->transmittance, uv), m->shininess, m->index_of_refraction};
     return h;
 }
 

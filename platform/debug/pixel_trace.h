@@ -3,8 +3,8 @@
 #ifndef RTP_PIXEL_TRACE_H
 #define RTP_PIXEL_TRACE_H
 
-#include "render.h"
 #include "load/scene_open.h"
+#include "render.h"
 
 #define RTP_PIXEL_ALL_SAMPLES UINT32_MAX
 
@@ -16,12 +16,12 @@ typedef struct {
     rt_ray_log log;
     /* The tree, as index lists (RT_NO_PARENT ends a list), children in log order.
      * Shadow rays hang under their light's record rather than the ray they light. */
-    uint32_t first_root;      /* the camera rays */
-    uint32_t *first_child;    /* per ray: its reflection and refraction rays */
-    uint32_t *first_shadow;   /* per light record: the shadow rays of that light */
-    uint32_t *next_sibling;   /* per ray */
-    uint32_t *first_light;    /* per ray: its light records */
-    uint32_t *next_light;     /* per light record */
+    uint32_t first_root;    /* the camera rays */
+    uint32_t *first_child;  /* per ray: its reflection and refraction rays */
+    uint32_t *first_shadow; /* per light record: the shadow rays of that light */
+    uint32_t *next_sibling; /* per ray */
+    uint32_t *first_light;  /* per ray: its light records */
+    uint32_t *next_light;   /* per light record */
     /* The pixel's averaged colour, exactly as rt_render_pixel computes it, and its bytes. */
     rt_vec3 color;
     uint8_t rgb[3];
@@ -40,7 +40,7 @@ typedef struct {
  * `capacity` rays and as many light records (log.overflow tells when the tree is cut short;
  * the colour is exact either way). False when out of memory. */
 bool rtp_pixel_trace_run(rtp_pixel_trace *pt, const rtp_scene *built, uint32_t x, uint32_t y, uint32_t sample,
-                        uint32_t capacity);
+                         uint32_t capacity);
 void rtp_pixel_trace_free(rtp_pixel_trace *pt);
 
 /* The material terms that weight a hit's light, reflected and refracted colours. */

@@ -51,9 +51,12 @@ void rtp_scene_stats_compute(const rtp_scene *built, rtp_scene_stats *out)
     out->nodes = built->loaded.node_count;
     for (uint32_t i = 0; i < d->object_count; i++) {
         const rt_object_desc *o = &d->objects[i];
-        if (o->kind == RT_SHAPE_SPHERE) out->spheres++;
-        else if (o->kind == RT_SHAPE_CYLINDER) out->cylinders++;
-        else out->meshes++, out->triangles_loaded += d->meshes[o->mesh].triangle_count;
+        if (o->kind == RT_SHAPE_SPHERE)
+            out->spheres++;
+        else if (o->kind == RT_SHAPE_CYLINDER)
+            out->cylinders++;
+        else
+            out->meshes++, out->triangles_loaded += d->meshes[o->mesh].triangle_count;
     }
     out->triangles = s->triangle_count;
     for (uint32_t i = 0; i < s->light_count; i++) out->lights[s->lights[i].kind]++;

@@ -1,9 +1,9 @@
 /* Projected views and object outlines for SVG drawings; see svg_view.h. */
 #include "debug/svg_view.h"
 
+#include "bvh.h"
 #include <math.h>
 #include <stdlib.h>
-#include "bvh.h"
 
 #define CAP_POINTS 32 /* points per cylinder cap circle */
 
@@ -100,8 +100,9 @@ static void sphere_ellipse(FILE *out, const rtp_svg_view *v, const rt_object *ob
     double angle = 0.5 * atan2(2 * b, a - c) * 180.0 / M_PI, centre[3], x, y;
     to_doubles(obj->to_world.translation, centre);
     rtp_svg_view_map(v, centre, &x, &y);
-    fprintf(out, "<ellipse class=\"quadric\" cx=\"%.1f\" cy=\"%.1f\" rx=\"%.2f\" ry=\"%.2f\" "
-                 "transform=\"rotate(%.2f %.1f %.1f)\"/>\n",
+    fprintf(out,
+            "<ellipse class=\"quadric\" cx=\"%.1f\" cy=\"%.1f\" rx=\"%.2f\" ry=\"%.2f\" "
+            "transform=\"rotate(%.2f %.1f %.1f)\"/>\n",
             x, y, major, minor, v->v_down ? angle : -angle, x, y);
 }
 
@@ -147,8 +148,8 @@ static void cylinder_outline(FILE *out, const rtp_svg_view *v, const rt_object *
     for (int cap = 0; cap < 2; cap++) {
         for (int i = 0; i < CAP_POINTS; i++) {
             double phi = 2 * M_PI * i / CAP_POINTS, p[3];
-            rt_vec3 local = rt_v3(rt_from_double(0.5 * cos(phi)), rt_from_double(cap ? 0.5 : -0.5),
-                                  rt_from_double(0.5 * sin(phi)));
+            rt_vec3 local =
+                rt_v3(rt_from_double(0.5 * cos(phi)), rt_from_double(cap ? 0.5 : -0.5), rt_from_double(0.5 * sin(phi)));
             to_doubles(rt_affine_point(&obj->to_world, local), p);
             rtp_svg_view_map(v, p, &pts[cap * CAP_POINTS + i][0], &pts[cap * CAP_POINTS + i][1]);
         }
@@ -158,13 +159,15 @@ static void cylinder_outline(FILE *out, const rtp_svg_view *v, const rt_object *
 }
 
 void rtp_svg_outlines(FILE *out, const rtp_svg_view *v, const rt_scene *scene, const rt_aabb *bounds,
-                     uint32_t max_triangles)
+                      uint32_t max_triangles)
 {
     if (scene->triangle_count > 0 && scene->triangle_count <= max_triangles) triangle_edges(out, v, scene);
     for (uint32_t i = 0; i < scene->object_count; i++) {
         const rt_object *obj = &scene->objects[i];
-        if (obj->kind == RT_SHAPE_SPHERE) sphere_ellipse(out, v, obj);
-        else if (obj->kind == RT_SHAPE_CYLINDER) cylinder_outline(out, v, obj);
+        if (obj->kind == RT_SHAPE_SPHERE)
+            sphere_ellipse(out, v, obj);
+        else if (obj->kind == RT_SHAPE_CYLINDER)
+            cylinder_outline(out, v, obj);
         else if (scene->triangle_count > max_triangles && bounds[i].lo.x <= bounds[i].hi.x)
             mesh_box(out, v, &bounds[i]);
     }

@@ -3,12 +3,12 @@
 #ifndef RTP_SVG_VIEW_H
 #define RTP_SVG_VIEW_H
 
-#include <stdio.h>
 #include "scene.h"
+#include <stdio.h>
 
 typedef struct {
-    int h_axis, v_axis; /* the world axes along the page's x and y (0 x, 1 y, 2 z) */
-    bool v_down;        /* true: the world v axis points down the page */
+    int h_axis, v_axis;               /* the world axes along the page's x and y (0 x, 1 y, 2 z) */
+    bool v_down;                      /* true: the world v axis points down the page */
     double center_h, center_v, scale; /* world window centre and page units per world unit */
     double left, top, size;           /* the square panel on the page */
 } rtp_svg_view;
@@ -25,6 +25,6 @@ rt_aabb *rtp_svg_object_bounds(const rt_scene *scene);
  * max_triangles (else each mesh's bounding box), spheres as ellipses, cylinders as their
  * silhouette and caps. bounds is rtp_svg_object_bounds(scene). */
 void rtp_svg_outlines(FILE *out, const rtp_svg_view *v, const rt_scene *scene, const rt_aabb *bounds,
-                     uint32_t max_triangles);
+                      uint32_t max_triangles);
 
 #endif

@@ -15,8 +15,7 @@
 
 static bool fail(char *err, size_t err_size, const char *path, const char *what)
 {
-    if (err_size > 0)
-        snprintf(err, err_size, "%s: %s", path, what);
+    if (err_size > 0) snprintf(err, err_size, "%s: %s", path, what);
     return false;
 }
 
@@ -37,12 +36,9 @@ static int write_all(int fd, const unsigned char *data, size_t size)
 {
     while (size > 0) {
         ssize_t n = write(fd, data, size);
-        if (n < 0 && errno == EINTR)
-            continue;
-        if (n < 0)
-            return errno;
-        if (n == 0)
-            return EIO;
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) return errno;
+        if (n == 0) return EIO;
         data += n;
         size -= (size_t)n;
     }
@@ -53,10 +49,8 @@ static int write_all(int fd, const unsigned char *data, size_t size)
 static void sync_folder(const char *path, size_t dir_len)
 {
     char *dir = strndup(path, dir_len > 0 ? dir_len : 1);
-    if (!dir)
-        return;
-    if (dir_len == 0)
-        dir[0] = '.';
+    if (!dir) return;
+    if (dir_len == 0) dir[0] = '.';
     int fd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
     if (fd >= 0) {
         fsync(fd);
@@ -70,20 +64,17 @@ bool rtp_file_write_atomic(const char *path, const void *data, size_t size, char
     const char *slash = strrchr(path, '/');
     size_t dir_len = slash ? (size_t)(slash - path) + 1 : 0;
     const char *name = path + dir_len;
-    if (*name == '\0')
-        return fail(err, err_size, path, *path ? "is a directory" : "empty file name");
+    if (*name == '\0') return fail(err, err_size, path, *path ? "is a directory" : "empty file name");
 
     size_t tmp_size = strlen(path) + 48;
     char *tmp = malloc(tmp_size);
-    if (!tmp)
-        return fail(err, err_size, path, "out of memory");
+    if (!tmp) return fail(err, err_size, path, "out of memory");
     memcpy(tmp, path, dir_len);
     int fd = -1;
     for (int attempt = 0; attempt < RTP_TEMP_ATTEMPTS && fd < 0; attempt++) {
         snprintf(tmp + dir_len, tmp_size - dir_len, ".%s.%ld.%d.tmp", name, (long)getpid(), attempt);
         fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
-        if (fd < 0 && errno != EEXIST)
-            break;
+        if (fd < 0 && errno != EEXIST) break;
     }
     if (fd < 0) {
         int e = errno;
@@ -92,12 +83,9 @@ bool rtp_file_write_atomic(const char *path, const void *data, size_t size, char
     }
 
     int e = write_all(fd, data, size);
-    if (e == 0 && fsync(fd) != 0)
-        e = errno;
-    if (close(fd) != 0 && e == 0)
-        e = errno;
-    if (e == 0 && rename(tmp, path) != 0)
-        e = errno;
+    if (e == 0 && fsync(fd) != 0) e = errno;
+    if (close(fd) != 0 && e == 0) e = errno;
+    if (e == 0 && rename(tmp, path) != 0) e = errno;
     if (e != 0) {
         unlink(tmp);
         free(tmp);

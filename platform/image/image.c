@@ -24,8 +24,7 @@ static const uint8_t png_signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, 
 
 static bool fail(char *err, size_t err_size, const char *path, const char *fmt, ...)
 {
-    if (err_size == 0)
-        return false;
+    if (err_size == 0) return false;
     int n = snprintf(err, err_size, "%s: ", path);
     if (n >= 0 && (size_t)n < err_size) {
         va_list ap;
@@ -39,8 +38,7 @@ static bool fail(char *err, size_t err_size, const char *path, const char *fmt, 
 static bool read_whole_file(const char *path, uint8_t **data, size_t *size, char *err, size_t err_size)
 {
     int fd = open(path, O_RDONLY | O_CLOEXEC);
-    if (fd < 0)
-        return fail(err, err_size, path, "cannot open: %s", strerror(errno));
+    if (fd < 0) return fail(err, err_size, path, "cannot open: %s", strerror(errno));
     struct stat st;
     const char *why = NULL;
     if (fstat(fd, &st) != 0)
@@ -54,13 +52,11 @@ static bool read_whole_file(const char *path, uint8_t **data, size_t *size, char
     else if (st.st_size == 0)
         why = "empty file";
     uint8_t *buf = why ? NULL : malloc((size_t)st.st_size);
-    if (!why && !buf)
-        why = "out of memory";
+    if (!why && !buf) why = "out of memory";
     size_t got = 0;
     while (!why && got < (size_t)st.st_size) {
         ssize_t n = read(fd, buf + got, (size_t)st.st_size - got);
-        if (n < 0 && errno == EINTR)
-            continue;
+        if (n < 0 && errno == EINTR) continue;
         if (n < 0)
             why = strerror(errno);
         else if (n == 0)
@@ -80,105 +76,81 @@ static bool read_whole_file(const char *path, uint8_t **data, size_t *size, char
 
 static bool check_size(const char *path, uint32_t w, uint32_t h, char *err, size_t err_size)
 {
-    if (w == 0 || h == 0)
-        return fail(err, err_size, path, "image has zero width or height");
+    if (w == 0 || h == 0) return fail(err, err_size, path, "image has zero width or height");
     if (w > RTP_IMAGE_MAX_SIDE || h > RTP_IMAGE_MAX_SIDE)
-        return fail(err, err_size, path, "image %ux%u exceeds the %ux%u limit", w, h,
-                    RTP_IMAGE_MAX_SIDE, RTP_IMAGE_MAX_SIDE);
+        return fail(err, err_size, path, "image %ux%u exceeds the %ux%u limit", w, h, RTP_IMAGE_MAX_SIDE,
+                    RTP_IMAGE_MAX_SIDE);
     return true;
 }
 
-static bool png_decode(const char *path, const uint8_t *data, size_t size, rtp_image *out,
-                       char *err, size_t err_size)
+static bool png_decode(const char *path, const uint8_t *data, size_t size, rtp_image *out, char *err, size_t err_size)
 {
     spng_ctx *ctx = spng_ctx_new(0);
-    if (!ctx)
-        return fail(err, err_size, path, "out of memory");
+    if (!ctx) return fail(err, err_size, path, "out of memory");
     struct spng_ihdr ihdr;
     size_t len = 0;
     uint8_t *rgb = NULL;
     int rc = spng_set_image_limits(ctx, RTP_IMAGE_MAX_SIDE, RTP_IMAGE_MAX_SIDE);
-    if (rc == 0)
-        rc = spng_set_chunk_limits(ctx, RTP_PNG_CHUNK_LIMIT, RTP_PNG_CHUNK_LIMIT);
-    if (rc == 0)
-        rc = spng_set_png_buffer(ctx, data, size);
-    if (rc == 0)
-        rc = spng_get_ihdr(ctx, &ihdr);
-    if (rc == 0)
-        rc = spng_decoded_image_size(ctx, SPNG_FMT_RGB8, &len);
-    if (rc == 0 && !(rgb = malloc(len)))
-        rc = SPNG_EMEM;
+    if (rc == 0) rc = spng_set_chunk_limits(ctx, RTP_PNG_CHUNK_LIMIT, RTP_PNG_CHUNK_LIMIT);
+    if (rc == 0) rc = spng_set_png_buffer(ctx, data, size);
+    if (rc == 0) rc = spng_get_ihdr(ctx, &ihdr);
+    if (rc == 0) rc = spng_decoded_image_size(ctx, SPNG_FMT_RGB8, &len);
+    if (rc == 0 && !(rgb = malloc(len))) rc = SPNG_EMEM;
     /* No SPNG_DECODE_GAMMA / _TRNS: the stored 8-bit values, as the reference tools read them. */
-    if (rc == 0)
-        rc = spng_decode_image(ctx, rgb, len, SPNG_FMT_RGB8, 0);
+    if (rc == 0) rc = spng_decode_image(ctx, rgb, len, SPNG_FMT_RGB8, 0);
     spng_ctx_free(ctx);
     if (rc != 0) {
         free(rgb);
         if (rc == SPNG_EUSER_WIDTH || rc == SPNG_EUSER_HEIGHT)
             return fail(err, err_size, path, "PNG exceeds the %ux%u image limit", RTP_IMAGE_MAX_SIDE,
                         RTP_IMAGE_MAX_SIDE);
-        if (rc == SPNG_EOF || rc == SPNG_IO_EOF)
-            return fail(err, err_size, path, "truncated PNG (file ends early)");
+        if (rc == SPNG_EOF || rc == SPNG_IO_EOF) return fail(err, err_size, path, "truncated PNG (file ends early)");
         return fail(err, err_size, path, "invalid PNG: %s", spng_strerror(rc));
     }
     *out = (rtp_image){.width = ihdr.width, .height = ihdr.height, .rgb = rgb};
     return true;
 }
 
-static bool ppm_space(uint8_t c)
-{
-    return c == ' ' || c == '\t' || c == '\n' || c == '\v' || c == '\f' || c == '\r';
-}
+static bool ppm_space(uint8_t c) { return c == ' ' || c == '\t' || c == '\n' || c == '\v' || c == '\f' || c == '\r'; }
 
 /* Reads one decimal header field at *pos, skipping whitespace and '#' comments before it. */
 static bool ppm_field(const uint8_t *d, size_t n, size_t *pos, uint32_t *value)
 {
     size_t p = *pos;
     for (;;) {
-        while (p < n && ppm_space(d[p]))
-            p++;
-        if (p >= n || d[p] != '#')
-            break;
-        while (p < n && d[p] != '\n' && d[p] != '\r')
-            p++;
+        while (p < n && ppm_space(d[p])) p++;
+        if (p >= n || d[p] != '#') break;
+        while (p < n && d[p] != '\n' && d[p] != '\r') p++;
     }
-    if (p >= n || d[p] < '0' || d[p] > '9')
-        return false;
+    if (p >= n || d[p] < '0' || d[p] > '9') return false;
     uint64_t v = 0;
     for (; p < n && d[p] >= '0' && d[p] <= '9'; p++) {
         v = v * 10 + (uint64_t)(d[p] - '0');
-        if (v > UINT32_MAX)
-            return false;
+        if (v > UINT32_MAX) return false;
     }
     *pos = p;
     *value = (uint32_t)v;
     return true;
 }
 
-static bool ppm_decode(const char *path, const uint8_t *d, size_t n, rtp_image *out,
-                       char *err, size_t err_size)
+static bool ppm_decode(const char *path, const uint8_t *d, size_t n, rtp_image *out, char *err, size_t err_size)
 {
-    if (d[1] != '6')
-        return fail(err, err_size, path, "Netpbm type P%c is not supported (only binary P6 PPM)", d[1]);
+    if (d[1] != '6') return fail(err, err_size, path, "Netpbm type P%c is not supported (only binary P6 PPM)", d[1]);
     static const char *const names[3] = {"width", "height", "maxval"};
     uint32_t v[3];
     size_t pos = 2;
     for (int i = 0; i < 3; i++)
         if (!ppm_field(d, n, &pos, &v[i]))
             return fail(err, err_size, path, "bad PPM header: expected the %s", names[i]);
-    if (v[2] != 255)
-        return fail(err, err_size, path, "PPM maxval %u is not supported (only 255)", v[2]);
+    if (v[2] != 255) return fail(err, err_size, path, "PPM maxval %u is not supported (only 255)", v[2]);
     if (pos >= n || !ppm_space(d[pos]))
         return fail(err, err_size, path, "bad PPM header: expected whitespace after maxval");
     pos++; /* exactly one whitespace byte separates the header from the raster */
-    if (!check_size(path, v[0], v[1], err, err_size))
-        return false;
+    if (!check_size(path, v[0], v[1], err, err_size)) return false;
     size_t want = (size_t)v[0] * v[1] * 3;
-    if (n - pos < want)
-        return fail(err, err_size, path, "truncated PPM: %zu of %zu pixel bytes", n - pos, want);
+    if (n - pos < want) return fail(err, err_size, path, "truncated PPM: %zu of %zu pixel bytes", n - pos, want);
     uint8_t *rgb = malloc(want);
-    if (!rgb)
-        return fail(err, err_size, path, "out of memory");
+    if (!rgb) return fail(err, err_size, path, "out of memory");
     memcpy(rgb, d + pos, want);
     *out = (rtp_image){.width = v[0], .height = v[1], .rgb = rgb};
     return true;
@@ -189,8 +161,7 @@ bool rtp_image_read(const char *path, rtp_image *out, char *err, size_t err_size
     *out = (rtp_image){0};
     uint8_t *data = NULL;
     size_t size = 0;
-    if (!read_whole_file(path, &data, &size, err, err_size))
-        return false;
+    if (!read_whole_file(path, &data, &size, err, err_size)) return false;
     bool ok;
     if (size >= sizeof png_signature && memcmp(data, png_signature, sizeof png_signature) == 0)
         ok = png_decode(path, data, size, out, err, err_size);
@@ -214,8 +185,7 @@ static uint8_t *ppm_encode(const rtp_image *img, size_t rgb_size, size_t *size)
     char header[48];
     int h = snprintf(header, sizeof header, "P6\n%u %u\n255\n", img->width, img->height);
     uint8_t *buf = malloc((size_t)h + rgb_size);
-    if (!buf)
-        return NULL;
+    if (!buf) return NULL;
     memcpy(buf, header, (size_t)h);
     memcpy(buf + h, img->rgb, rgb_size);
     *size = (size_t)h + rgb_size;
@@ -238,12 +208,9 @@ static void *png_encode(const rtp_image *img, size_t rgb_size, size_t *size, int
     };
     void *png = NULL;
     *rc = spng_set_option(ctx, SPNG_ENCODE_TO_BUFFER, 1);
-    if (*rc == 0)
-        *rc = spng_set_ihdr(ctx, &ihdr);
-    if (*rc == 0)
-        *rc = spng_encode_image(ctx, img->rgb, rgb_size, SPNG_FMT_PNG, SPNG_ENCODE_FINALIZE);
-    if (*rc == 0)
-        png = spng_get_png_buffer(ctx, size, rc);
+    if (*rc == 0) *rc = spng_set_ihdr(ctx, &ihdr);
+    if (*rc == 0) *rc = spng_encode_image(ctx, img->rgb, rgb_size, SPNG_FMT_PNG, SPNG_ENCODE_FINALIZE);
+    if (*rc == 0) png = spng_get_png_buffer(ctx, size, rc);
     spng_ctx_free(ctx);
     return png;
 }
@@ -253,8 +220,7 @@ static void *encode_png(const char *path, const rtp_image *img, size_t *size, ch
 {
     int rc;
     void *bytes = png_encode(img, (size_t)img->width * img->height * 3, size, &rc);
-    if (!bytes)
-        fail(err, err_size, path, "cannot encode PNG: %s", spng_strerror(rc));
+    if (!bytes) fail(err, err_size, path, "cannot encode PNG: %s", spng_strerror(rc));
     return bytes;
 }
 
@@ -264,23 +230,19 @@ void *rtp_image_encode_png(const rtp_image *img, size_t *size, char *err, size_t
         fail(err, err_size, "image", "no pixels to encode");
         return NULL;
     }
-    if (!check_size("image", img->width, img->height, err, err_size))
-        return NULL;
+    if (!check_size("image", img->width, img->height, err, err_size)) return NULL;
     return encode_png("image", img, size, err, err_size);
 }
 
 bool rtp_image_write(const char *path, const rtp_image *img, char *err, size_t err_size)
 {
-    if (!img->rgb)
-        return fail(err, err_size, path, "no pixels to write");
-    if (!check_size(path, img->width, img->height, err, err_size))
-        return false;
+    if (!img->rgb) return fail(err, err_size, path, "no pixels to write");
+    if (!check_size(path, img->width, img->height, err, err_size)) return false;
     size_t rgb_size = (size_t)img->width * img->height * 3;
     size_t size = 0;
     void *bytes;
     if (ends_with_png(path)) {
-        if (!(bytes = encode_png(path, img, &size, err, err_size)))
-            return false;
+        if (!(bytes = encode_png(path, img, &size, err, err_size))) return false;
     } else if (!(bytes = ppm_encode(img, rgb_size, &size))) {
         return fail(err, err_size, path, "out of memory");
     }

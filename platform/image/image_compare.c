@@ -7,8 +7,7 @@
 
 bool rtp_image_compare(const rtp_image *a, const rtp_image *b, rtp_image_metrics *m)
 {
-    if (a->width != b->width || a->height != b->height || a->width == 0 || a->height == 0)
-        return false;
+    if (a->width != b->width || a->height != b->height || a->width == 0 || a->height == 0) return false;
     uint64_t pixels = (uint64_t)a->width * a->height, channels = pixels * 3;
     uint64_t sum = 0, sum_sq = 0, within[4] = {0}, over2 = 0, worst_at = 0;
     unsigned worst = 0;
@@ -68,19 +67,16 @@ static void heat(unsigned d, uint8_t rgb[3])
         return;
     }
     int i = 0;
-    while (d >= at[i + 1])
-        i++;
+    while (d >= at[i + 1]) i++;
     unsigned t = (d - at[i]) * 255 / (at[i + 1] - at[i]); /* 0..255 along the segment */
-    for (int c = 0; c < 3; c++)
-        rgb[c] = (uint8_t)((colour[i][c] * (255 - t) + colour[i + 1][c] * t) / 255);
+    for (int c = 0; c < 3; c++) rgb[c] = (uint8_t)((colour[i][c] * (255 - t) + colour[i + 1][c] * t) / 255);
 }
 
 bool rtp_image_diff_map(const rtp_image *a, const rtp_image *b, rtp_image *out)
 {
     size_t pixels = (size_t)a->width * a->height;
     *out = (rtp_image){.width = a->width, .height = a->height, .rgb = malloc(pixels * 3)};
-    if (!out->rgb)
-        return false;
+    if (!out->rgb) return false;
     for (size_t p = 0; p < pixels; p++) {
         unsigned most = 0;
         for (int c = 0; c < 3; c++) {

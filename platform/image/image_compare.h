@@ -9,8 +9,8 @@ typedef struct {
     /* 10 log10(255^2 N / sum of squared differences) over all N = 3 w h RGB channels,
      * as tools/fidelity computes it; INFINITY when the images are identical. */
     double psnr;
-    double mean_diff;   /* mean |a - b| over all channels, in 8-bit levels */
-    unsigned max_diff;  /* largest |a - b| over all channels */
+    double mean_diff;  /* mean |a - b| over all channels, in 8-bit levels */
+    unsigned max_diff; /* largest |a - b| over all channels */
     /* Percentage of channels with |a - b| <= 0, 1, 2 and 8 levels. */
     double within0_pct, within1_pct, within2_pct, within8_pct;
     uint64_t pixels_over2;          /* pixels whose largest channel difference exceeds 2 */

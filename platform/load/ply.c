@@ -46,10 +46,14 @@ static bool read_whole_file(const char *path, uint8_t **data, size_t *size, char
     }
     struct stat st;
     const char *why = NULL;
-    if (fstat(fd, &st) != 0) why = "cannot read the file's size";
-    else if (S_ISDIR(st.st_mode)) why = "is a directory";
-    else if (!S_ISREG(st.st_mode)) why = "not a regular file";
-    else if (st.st_size > (off_t)PLY_MAX_FILE) why = "file too large for a mesh (over 1 GiB)";
+    if (fstat(fd, &st) != 0)
+        why = "cannot read the file's size";
+    else if (S_ISDIR(st.st_mode))
+        why = "is a directory";
+    else if (!S_ISREG(st.st_mode))
+        why = "not a regular file";
+    else if (st.st_size > (off_t)PLY_MAX_FILE)
+        why = "file too large for a mesh (over 1 GiB)";
     /* One spare byte so an empty file still gets a buffer. */
     uint8_t *buf = why ? NULL : malloc((size_t)st.st_size + 1);
     if (!why && !buf) why = "out of memory";
@@ -57,8 +61,10 @@ static bool read_whole_file(const char *path, uint8_t **data, size_t *size, char
     while (!why && got < (size_t)st.st_size) {
         ssize_t n = read(fd, buf + got, (size_t)st.st_size - got);
         if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) why = n < 0 ? strerror(errno) : "file shrank while reading";
-        else got += (size_t)n;
+        if (n <= 0)
+            why = n < 0 ? strerror(errno) : "file shrank while reading";
+        else
+            got += (size_t)n;
     }
     close(fd);
     if (why) {
@@ -91,8 +97,10 @@ static bool next_header_line(ply_reader *r, ply_word *words, int *count)
         while (p < eol && (*p == ' ' || *p == '\t' || *p == '\r')) p++;
         const uint8_t *start = p;
         while (p < eol && *p != ' ' && *p != '\t' && *p != '\r') p++;
-        if (p > start && *count < PLY_MAX_WORDS) words[(*count)++] = (ply_word){(const char *)start, (size_t)(p - start)};
-        else if (p > start) (*count)++;
+        if (p > start && *count < PLY_MAX_WORDS)
+            words[(*count)++] = (ply_word){(const char *)start, (size_t)(p - start)};
+        else if (p > start)
+            (*count)++;
     }
     r->pos = eol < end ? (size_t)(eol - r->data) + 1 : r->size;
     return true;
@@ -101,8 +109,8 @@ static bool next_header_line(ply_reader *r, ply_word *words, int *count)
 static bool parse_type(ply_word w, ply_type *t)
 {
     static const char *const names[][2] = {
-        {"char", "int8"},   {"uchar", "uint8"}, {"short", "int16"},  {"ushort", "uint16"},
-        {"int", "int32"},   {"uint", "uint32"}, {"float", "float32"}, {"double", "float64"},
+        {"char", "int8"}, {"uchar", "uint8"}, {"short", "int16"},   {"ushort", "uint16"},
+        {"int", "int32"}, {"uint", "uint32"}, {"float", "float32"}, {"double", "float64"},
     };
     for (int i = 0; i < 8; i++)
         if (word_is(w, names[i][0]) || word_is(w, names[i][1])) {
@@ -122,7 +130,10 @@ static void printable(ply_word w, char *out, size_t size)
 
 static ply_role vertex_role(ply_word w)
 {
-    static const struct { const char *name; ply_role role; } roles[] = {
+    static const struct {
+        const char *name;
+        ply_role role;
+    } roles[] = {
         {"x", PLY_X},         {"y", PLY_Y},         {"z", PLY_Z},  {"nx", PLY_NX}, {"ny", PLY_NY},
         {"nz", PLY_NZ},       {"u", PLY_U},         {"v", PLY_V},  {"s", PLY_U},   {"t", PLY_V},
         {"texture_u", PLY_U}, {"texture_v", PLY_V}, {"tx", PLY_U}, {"ty", PLY_V},
@@ -192,11 +203,16 @@ static bool parse_property(ply_reader *r, const ply_word *w, int n)
 static bool parse_format(ply_reader *r, const ply_word *w, int n, bool *seen)
 {
     if (*seen) return ply_fail(r, "second format line");
-    if (n != 3 || !word_is(w[2], "1.0")) return ply_fail(r, "expected 'format <ascii|binary_little_endian|binary_big_endian> 1.0'");
-    if (word_is(w[1], "ascii")) r->format = PLY_ASCII;
-    else if (word_is(w[1], "binary_little_endian")) r->format = PLY_LITTLE_ENDIAN;
-    else if (word_is(w[1], "binary_big_endian")) r->format = PLY_BIG_ENDIAN;
-    else return ply_fail(r, "unknown format (expected ascii, binary_little_endian or binary_big_endian)");
+    if (n != 3 || !word_is(w[2], "1.0"))
+        return ply_fail(r, "expected 'format <ascii|binary_little_endian|binary_big_endian> 1.0'");
+    if (word_is(w[1], "ascii"))
+        r->format = PLY_ASCII;
+    else if (word_is(w[1], "binary_little_endian"))
+        r->format = PLY_LITTLE_ENDIAN;
+    else if (word_is(w[1], "binary_big_endian"))
+        r->format = PLY_BIG_ENDIAN;
+    else
+        return ply_fail(r, "unknown format (expected ascii, binary_little_endian or binary_big_endian)");
     *seen = true;
     return true;
 }
@@ -252,11 +268,14 @@ static bool parse_header(ply_reader *r)
         if (n == 0) continue;
         bool ok = true;
         if (word_is(w[0], "end_header")) break;
-        if (word_is(w[0], "format")) ok = parse_format(r, w, n, &have_format);
+        if (word_is(w[0], "format"))
+            ok = parse_format(r, w, n, &have_format);
         else if (!have_format && (word_is(w[0], "element") || word_is(w[0], "property")))
             ok = ply_fail(r, "%.*s before the format line", (int)w[0].n, w[0].s);
-        else if (word_is(w[0], "element")) ok = parse_element(r, w, n);
-        else if (word_is(w[0], "property")) ok = parse_property(r, w, n);
+        else if (word_is(w[0], "element"))
+            ok = parse_element(r, w, n);
+        else if (word_is(w[0], "property"))
+            ok = parse_property(r, w, n);
         /* comment, obj_info and unknown lines (some exporters write bare text) are skipped. */
         if (!ok) return false;
     }

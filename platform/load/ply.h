@@ -2,8 +2,8 @@
 #ifndef RTP_PLY_H
 #define RTP_PLY_H
 
-#include <stddef.h>
 #include "scene.h"
+#include <stddef.h>
 
 /* A mesh as read from a file; all arrays are malloc'd and released by rtp_ply_free.
  * normals and uvs are NULL when the file has none. Polygons are fan-triangulated and

@@ -217,7 +217,7 @@ static bool read_entry(ply_reader *r, const ply_element *e)
         double d;
         if (!read_value(r, p->is_list ? p->count_type : p->type, &d)) return false;
         if (p->is_list && d < 0) return fail_value(r, "negative list count");
-        bool ok = !p->is_list ? store_scalar(r, p->role, d)
+        bool ok = !p->is_list              ? store_scalar(r, p->role, d)
                   : p->role == PLY_INDICES ? read_polygon(r, p, (uint64_t)d)
                                            : skip_list(r, p, (uint64_t)d);
         if (!ok) return false;

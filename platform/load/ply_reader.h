@@ -19,7 +19,17 @@ typedef enum { PLY_ASCII, PLY_LITTLE_ENDIAN, PLY_BIG_ENDIAN } ply_format;
 
 /* What a property feeds in the mesh; PLY_SKIP for everything the tracer ignores. */
 typedef enum {
-    PLY_SKIP, PLY_X, PLY_Y, PLY_Z, PLY_NX, PLY_NY, PLY_NZ, PLY_U, PLY_V, PLY_INDICES, PLY_ROLE_COUNT
+    PLY_SKIP,
+    PLY_X,
+    PLY_Y,
+    PLY_Z,
+    PLY_NX,
+    PLY_NY,
+    PLY_NZ,
+    PLY_U,
+    PLY_V,
+    PLY_INDICES,
+    PLY_ROLE_COUNT
 } ply_role;
 
 typedef struct {
@@ -43,10 +53,10 @@ typedef struct {
     size_t err_size;
     const uint8_t *data;
     size_t size;
-    size_t pos;          /* next byte to read */
-    size_t value_at;     /* where the last value read started */
-    unsigned long line;  /* 1-based line of pos (header and ASCII body) */
-    bool binary_body;    /* errors name a byte offset instead of a line */
+    size_t pos;         /* next byte to read */
+    size_t value_at;    /* where the last value read started */
+    unsigned long line; /* 1-based line of pos (header and ASCII body) */
+    bool binary_body;   /* errors name a byte offset instead of a line */
     ply_format format;
     ply_element elements[PLY_MAX_ELEMENTS];
     uint32_t element_count;

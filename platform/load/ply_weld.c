@@ -36,7 +36,7 @@ bool rtp_ply_weld(rtp_ply_mesh *m)
 {
     size_t slots = 1;
     while (slots < (size_t)m->vertex_count * 2) slots <<= 1;
-    uint32_t *table = malloc(slots * sizeof *table);   /* new vertex index + 1, 0 = empty */
+    uint32_t *table = malloc(slots * sizeof *table); /* new vertex index + 1, 0 = empty */
     uint32_t *remap = malloc((m->vertex_count ? m->vertex_count : 1) * sizeof *remap);
     if (!table || !remap) {
         free(table);

@@ -67,10 +67,10 @@ typedef struct {
     rtp_yaml y;
     char *root; /* the folder asset paths are relative to */
     store *st;
-    list names; /* char *, the Name of each enabled node: rtp_loaded_scene.node_names */
-    list material_names, texture_names; /* char *, by desc index */
+    list names;                                /* char *, the Name of each enabled node: rtp_loaded_scene.node_names */
+    list material_names, texture_names;        /* char *, by desc index */
     list textures, meshes, shaders, materials; /* the *_decl of the sections */
-    uint32_t cube, square;                      /* desc.meshes index of the built-ins once used */
+    uint32_t cube, square;                     /* desc.meshes index of the built-ins once used */
     bool have_camera;
     rt_camera_desc camera;
 } loader;
@@ -218,7 +218,7 @@ static bool load_channel(loader *L, const yaml_node_t *uniforms, const char *key
         texture_decl *t = find(&L->textures, sizeof *t, map_name);
         if (!t)
             return rtp_yaml_fail(y, rtp_yaml_get(y, channel, "Color Map"), "Color Map",
-                                "no texture named '%s' in Textures", map_name);
+                                 "no texture named '%s' in Textures", map_name);
         if (t->index == UNSET) {
             if (!push(L, &L->st->textures, sizeof(rt_texture)) || !push_name(L, &L->texture_names, map_name))
                 return false;
@@ -269,7 +269,8 @@ static bool read_camera(rtp_yaml *y, const yaml_node_t *c, const rt_affine *worl
     double fov, ortho, focus, aperture, difference, std_error;
     memset(cam, 0, sizeof *cam);
     cam->world = *world;
-    if (!rtp_yaml_real(y, c, "FOV", 50.0, &fov) || !rtp_yaml_bool(y, c, "Perspective Camera?", true, &cam->perspective) ||
+    if (!rtp_yaml_real(y, c, "FOV", 50.0, &fov) ||
+        !rtp_yaml_bool(y, c, "Perspective Camera?", true, &cam->perspective) ||
         !rtp_yaml_real(y, c, "Orthographic View Width", 5.0, &ortho) ||
         !rtp_yaml_uint(y, c, "Render Width (px)", 1280, 1, MAX_IMAGE_SIDE, &cam->width) ||
         !rtp_yaml_uint(y, c, "Render Height (px)", 720, 1, MAX_IMAGE_SIDE, &cam->height) ||
@@ -330,7 +331,7 @@ static bool load_light(loader *L, const yaml_node_t *c, rt_light_kind kind, cons
         color[i] *= multiplier;
         if (!isfinite(color[i]))
             return rtp_yaml_fail(y, rtp_yaml_get(y, c, "Intensity Multiplier"), "Intensity Multiplier",
-                                "Color times Intensity Multiplier overflows");
+                                 "Color times Intensity Multiplier overflows");
     }
     /* A directional light shines along its node's local +Y axis (as core/scene_build.c derives it). */
     if (kind == RT_LIGHT_DIRECTIONAL &&
@@ -422,7 +423,7 @@ static bool load_triangle_mesh(loader *L, const yaml_node_t *c, const rt_affine 
     }
     if (!strcmp(name, "Cube")) return builtin_mesh(L, rt_builtin_mesh_cube(), &L->cube, &o->mesh);
     return rtp_yaml_fail(y, rtp_yaml_get(y, c, "Mesh"), "Mesh", "no mesh named '%s' in Meshes, and it is not 'Cube'",
-                        name);
+                         name);
 }
 
 static bool load_component(loader *L, const yaml_node_t *key, const yaml_node_t *c, const rt_affine *world,
@@ -434,14 +435,22 @@ static bool load_component(loader *L, const yaml_node_t *key, const yaml_node_t 
     if (!rtp_yaml_want_map(y, c, kind)) return false;
     size_t mark = rtp_yaml_push(y, kind);
     bool ok = true; /* Transform is read by load_node; EnvironmentMap and the rest are ignored */
-    if (!strcmp(kind, "Camera")) ok = load_camera(L, c, world);
-    else if (!strcmp(kind, "PointLight")) ok = load_light(L, c, RT_LIGHT_POINT, world);
-    else if (!strcmp(kind, "DirectionalLight")) ok = load_light(L, c, RT_LIGHT_DIRECTIONAL, world);
-    else if (!strcmp(kind, "AreaLight")) ok = load_light(L, c, RT_LIGHT_AREA, world);
-    else if (!strcmp(kind, "Sphere")) ok = load_quadric(L, c, RT_SHAPE_SPHERE, world, source);
-    else if (!strcmp(kind, "Cylinder")) ok = load_quadric(L, c, RT_SHAPE_CYLINDER, world, source);
-    else if (!strcmp(kind, "Plane")) ok = load_plane(L, c, world, source);
-    else if (!strcmp(kind, "TriangleMesh")) ok = load_triangle_mesh(L, c, world, source);
+    if (!strcmp(kind, "Camera"))
+        ok = load_camera(L, c, world);
+    else if (!strcmp(kind, "PointLight"))
+        ok = load_light(L, c, RT_LIGHT_POINT, world);
+    else if (!strcmp(kind, "DirectionalLight"))
+        ok = load_light(L, c, RT_LIGHT_DIRECTIONAL, world);
+    else if (!strcmp(kind, "AreaLight"))
+        ok = load_light(L, c, RT_LIGHT_AREA, world);
+    else if (!strcmp(kind, "Sphere"))
+        ok = load_quadric(L, c, RT_SHAPE_SPHERE, world, source);
+    else if (!strcmp(kind, "Cylinder"))
+        ok = load_quadric(L, c, RT_SHAPE_CYLINDER, world, source);
+    else if (!strcmp(kind, "Plane"))
+        ok = load_plane(L, c, world, source);
+    else if (!strcmp(kind, "TriangleMesh"))
+        ok = load_triangle_mesh(L, c, world, source);
     else if (!strcmp(kind, "Cone") || !strcmp(kind, "Ring") || !strcmp(kind, "SurfaceOfRevolution"))
         ok = rtp_yaml_fail(y, key, NULL, "component not supported");
     if (ok) rtp_yaml_pop(y, mark);
@@ -494,7 +503,8 @@ static bool load_node(loader *L, const yaml_node_t *node, const rt_affine *paren
     char **slot = push(L, &L->names, sizeof *slot);
     if (!slot || !(*slot = strdup(name))) return rtp_yaml_fail(y, NULL, NULL, "out of memory");
     uint32_t source = L->names.count - 1;
-    if (!rtp_yaml_map(y, node, "Components", false, &components) || !rtp_yaml_seq(y, node, "Children", false, &children))
+    if (!rtp_yaml_map(y, node, "Components", false, &components) ||
+        !rtp_yaml_seq(y, node, "Children", false, &children))
         return false;
     size_t mark = rtp_yaml_push(y, "Components");
     if (!node_transform(y, components, parent, &world)) return false;
@@ -551,7 +561,7 @@ static bool find_root(loader *L, const char *scene_path, const char *assets_root
     if (!dir) return rtp_yaml_fail(&L->y, NULL, NULL, "cannot resolve the scene's folder: %s", strerror(errno));
     L->root = dir;
     char *end = strrchr(dir, '/'); /* realpath is absolute: there is a slash */
-    end[end == dir] = '\0';         /* keeps "/" for a scene in the file system root */
+    end[end == dir] = '\0';        /* keeps "/" for a scene in the file system root */
     while (end > dir) {
         char *start = end;
         while (start[-1] != '/') start--;
@@ -574,12 +584,14 @@ static bool asset_path(loader *L, const yaml_node_t *entry, char **resolved)
     const char *sep = *L->root && L->root[strlen(L->root) - 1] == '/' ? "" : "/";
     size_t size = strlen(L->root) + strlen(path) + 2;
     if (!(*resolved = malloc(size))) return rtp_yaml_fail(y, NULL, NULL, "out of memory");
-    if (path[0] == '/') snprintf(*resolved, size, "%s", path);
-    else snprintf(*resolved, size, "%s%s%s", L->root, sep, path);
+    if (path[0] == '/')
+        snprintf(*resolved, size, "%s", path);
+    else
+        snprintf(*resolved, size, "%s%s%s", L->root, sep, path);
     FILE *f = fopen(*resolved, "rb");
     if (!f)
         return rtp_yaml_fail(y, rtp_yaml_get(y, entry, "Path"), "Path", "cannot read '%s': %s", *resolved,
-                            strerror(errno));
+                             strerror(errno));
     fclose(f);
     return true;
 }
@@ -718,8 +730,7 @@ void rtp_scene_unload(rtp_loaded_scene *scene)
     if (st) {
         for (uint32_t i = 0; i < st->images.count; i++) rtp_image_free(&((rtp_image *)st->images.data)[i]);
         for (uint32_t i = 0; i < st->plys.count; i++) rtp_ply_free(&((rtp_ply_mesh *)st->plys.data)[i]);
-        list *lists[] = {&st->materials, &st->textures, &st->images, &st->meshes,
-                         &st->plys,      &st->objects,  &st->lights};
+        list *lists[] = {&st->materials, &st->textures, &st->images, &st->meshes, &st->plys, &st->objects, &st->lights};
         for (size_t i = 0; i < sizeof lists / sizeof lists[0]; i++) free(lists[i]->data);
         free(st);
     }

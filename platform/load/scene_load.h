@@ -3,8 +3,8 @@
 #ifndef RTP_SCENE_LOAD_H
 #define RTP_SCENE_LOAD_H
 
-#include <stddef.h>
 #include "scene.h"
+#include <stddef.h>
 
 #define RTP_ERR_SIZE 1024
 

@@ -1,10 +1,10 @@
 /* Load + build with an arena that grows (up to the memory cap) until the scene fits. */
 #include "load/scene_open.h"
 
-#include <stdio.h>
-#include <stdlib.h>
 #include "cli/exit_codes.h"
 #include "thread/threads.h"
+#include <stdio.h>
+#include <stdlib.h>
 
 static void apply_overrides(rt_scene_desc *d, const rtp_scene_options *opt)
 {

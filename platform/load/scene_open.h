@@ -2,17 +2,17 @@
 #ifndef RTP_SCENE_OPEN_H
 #define RTP_SCENE_OPEN_H
 
-#include <stddef.h>
 #include "load/scene_load.h"
+#include <stddef.h>
 
 typedef struct {
     const char *assets_root; /* NULL: found from the scene file's location */
     size_t max_memory;       /* arena cap in bytes */
     /* Overrides applied to the file's camera when non-zero / non-negative. */
     uint32_t width, height;
-    int32_t depth;           /* -1: keep the file's Maximum Recursion Depth */
-    int32_t aa;              /* -1: keep the file's Samples Per Pixel index */
-    uint32_t threads;        /* for the BVH build; 0: one per online CPU */
+    int32_t depth;    /* -1: keep the file's Maximum Recursion Depth */
+    int32_t aa;       /* -1: keep the file's Samples Per Pixel index */
+    uint32_t threads; /* for the BVH build; 0: one per online CPU */
 } rtp_scene_options;
 
 typedef struct {

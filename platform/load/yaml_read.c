@@ -46,7 +46,7 @@ static bool check_tree(rtp_yaml *y)
         if (refs[i] > (i == 1 ? 0 : 1)) {
             free(refs);
             return rtp_yaml_fail(y, yaml_document_get_node(&y->doc, (int)i), NULL,
-                                "this node is reused through an alias; aliases are not supported");
+                                 "this node is reused through an alias; aliases are not supported");
         }
     }
     free(refs);
@@ -167,9 +167,9 @@ void rtp_yaml_pop(rtp_yaml *y, size_t mark)
 bool rtp_yaml_fail(rtp_yaml *y, const yaml_node_t *at, const char *key, const char *fmt, ...)
 {
     size_t len = 0;
-    int n = at ? snprintf(y->err, y->err_size, "%s:%zu:%zu: ", y->file, at->start_mark.line + 1,
-                          at->start_mark.column + 1)
-               : snprintf(y->err, y->err_size, "%s: ", y->file);
+    int n =
+        at ? snprintf(y->err, y->err_size, "%s:%zu:%zu: ", y->file, at->start_mark.line + 1, at->start_mark.column + 1)
+           : snprintf(y->err, y->err_size, "%s: ", y->file);
     if (n > 0) len = (size_t)n;
     if (len < y->err_size && (y->path_len || key)) {
         n = snprintf(y->err + len, y->err_size - len, "%s%s%s: ", y->path, y->path_len && key ? "/" : "",
@@ -270,9 +270,12 @@ bool rtp_yaml_bool(rtp_yaml *y, const yaml_node_t *map, const char *key, bool de
     const char *s = rtp_yaml_text(n);
     *out = def;
     if (!n) return true;
-    if (s && (!strcmp(s, "true") || !strcmp(s, "True") || !strcmp(s, "TRUE"))) *out = true;
-    else if (s && (!strcmp(s, "false") || !strcmp(s, "False") || !strcmp(s, "FALSE"))) *out = false;
-    else return rtp_yaml_expected(y, n, key, "true or false");
+    if (s && (!strcmp(s, "true") || !strcmp(s, "True") || !strcmp(s, "TRUE")))
+        *out = true;
+    else if (s && (!strcmp(s, "false") || !strcmp(s, "False") || !strcmp(s, "FALSE")))
+        *out = false;
+    else
+        return rtp_yaml_expected(y, n, key, "true or false");
     return true;
 }
 
@@ -294,7 +297,7 @@ bool rtp_yaml_real(rtp_yaml *y, const yaml_node_t *map, const char *key, double 
 }
 
 bool rtp_yaml_uint(rtp_yaml *y, const yaml_node_t *map, const char *key, uint32_t def, uint32_t lo, uint32_t hi,
-                  uint32_t *out)
+                   uint32_t *out)
 {
     double v;
     if (!rtp_yaml_real(y, map, key, def, &v)) return false;

@@ -68,7 +68,7 @@ bool rtp_yaml_bool(rtp_yaml *y, const yaml_node_t *map, const char *key, bool de
 bool rtp_yaml_real(rtp_yaml *y, const yaml_node_t *map, const char *key, double def, double *out);
 /* A number with an integral value in [lo, hi]. */
 bool rtp_yaml_uint(rtp_yaml *y, const yaml_node_t *map, const char *key, uint32_t def, uint32_t lo, uint32_t hi,
-                  uint32_t *out);
+                   uint32_t *out);
 /* A choice index: an integral value >= 0, clamped to last. */
 bool rtp_yaml_index(rtp_yaml *y, const yaml_node_t *map, const char *key, uint32_t def, uint32_t last, uint32_t *out);
 

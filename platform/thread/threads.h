@@ -3,9 +3,9 @@
 #ifndef RTP_THREADS_H
 #define RTP_THREADS_H
 
+#include "render.h"
 #include <stdbool.h>
 #include <stdint.h>
-#include "render.h"
 
 typedef struct {
     uint32_t threads;   /* 0 = one per online CPU */
