@@ -6,6 +6,9 @@
                    rtk-vs-Embree ray workload
   spheres.yaml     10,000 spheres on a floor (a fixed pseudo-random layout)
   deep.yaml        mirrors and glass, Maximum Recursion Depth 10
+  scale/martini_L0.yaml .. martini_L5.yaml
+                   dense_mesh.yaml at 0 to 5 Loop levels (12,891 to 13,188,108
+                   triangles): the cost curve of `make bench-scale`
 
 Output is deterministic (own LCG, fixed number formatting): rerunning it rewrites the
 same bytes. Usage: bench/gen_scenes.py [OUTDIR]   (default scenes/bench)
@@ -127,7 +130,7 @@ def scene(name, meshes, materials, children):
 MARTINI_BOTTOM = -2.93809
 
 
-def dense_mesh():
+def dense_mesh(levels=3, name="dense_mesh"):
     """martini.ply (12,879 usable triangles, welded) at 3 Loop levels: 64 x 12,879 = 824,256, plus a floor."""
     materials = [material("floor", (0.188, 0.216, 0.2), ks=(0.3, 0.3, 0.3), shininess=128),
                  material("glass", (0.35, 0.45, 0.55), ks=(0.4, 0.4, 0.4), shininess=64)]
@@ -137,10 +140,10 @@ def dense_mesh():
         node("Point Light", point_light((1, 1, 1), (1, 0, 0.02)), translation=(1.5, 3.5, 2.5)),
         camera("Camera", (0, 3.4, 6.2), (0, 1.3, 0), 32, (512, 512), 3),
         node("Floor", shape("TriangleMesh", "floor", 0, "Cube"), translation=(0, -0.125, 0), scale=(12, 0.25, 12)),
-        node("Martini", shape("TriangleMesh", "glass", 3, "martini"), translation=(0, -MARTINI_BOTTOM * scale, 0),
+        node("Martini", shape("TriangleMesh", "glass", levels, "martini"), translation=(0, -MARTINI_BOTTOM * scale, 0),
              scale=(scale, scale, scale)),
     ]
-    return scene("dense_mesh", [("martini", "assets/trace/trimeshes/martini.ply")], materials, children)
+    return scene(name, [("martini", "assets/trace/trimeshes/martini.ply")], materials, children)
 
 
 class Lcg:
@@ -217,7 +220,10 @@ def deep():
 def main():
     out = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "scenes", "bench")
     os.makedirs(out, exist_ok=True)
-    for name, text in (("dense_mesh.yaml", dense_mesh()), ("spheres.yaml", spheres()), ("deep.yaml", deep())):
+    scenes = [("dense_mesh.yaml", dense_mesh()), ("spheres.yaml", spheres()), ("deep.yaml", deep())]
+    scenes += [(f"scale/martini_L{n}.yaml", dense_mesh(n, f"martini_L{n}")) for n in range(6)]
+    os.makedirs(os.path.join(out, "scale"), exist_ok=True)
+    for name, text in scenes:
         with open(os.path.join(out, name), "w", newline="\n") as f:
             f.write(text)
 

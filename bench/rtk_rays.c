@@ -78,7 +78,8 @@ bool bench_make_workload(const rt_scene *scene, uint32_t width, uint32_t height,
     w->height = height;
     w->primary = malloc(n * sizeof(bench_ray));
     w->shadow = malloc(n * sizeof(bench_ray));
-    if (!w->primary || !w->shadow || !copy_triangles(scene, w)) {
+    w->shadow_source = malloc(n * sizeof(uint32_t));
+    if (!w->primary || !w->shadow || !w->shadow_source || !copy_triangles(scene, w)) {
         fprintf(stderr, "rtk-bench: out of memory for the workload\n");
         bench_workload_free(w);
         return false;
@@ -95,8 +96,9 @@ bool bench_make_workload(const rt_scene *scene, uint32_t width, uint32_t height,
             rt_scene_hit hit;
             if (!rt_scene_nearest(scene, &rs, true, &hit)) continue;
             rt_ray sr;
-            if (shadow_ray(light, rt_v3_madd(ray.origin, ray.direction, hit.hit.t), &sr))
-                w->shadow[w->shadow_count++] = to_bench(sr);
+            if (!shadow_ray(light, rt_v3_madd(ray.origin, ray.direction, hit.hit.t), &sr)) continue;
+            w->shadow_source[w->shadow_count] = w->primary_count - 1;
+            w->shadow[w->shadow_count++] = to_bench(sr);
         }
     }
     return true;

@@ -1,8 +1,11 @@
 #!/usr/bin/env bash
 # The `make bench` driver (run from the repository root after the binaries are built):
-# makes the ray workload once, runs rtk double, rtk fixed and Embree on it, times the
-# render of every corpus and benchmark scene, then prints one table and writes
-# build/bench/results.csv and build/bench/results.json. Progress goes to stderr.
+# makes the ray workload once, runs rtk double, rtk fixed and Embree on it, checks ray
+# by ray that rtk and Embree answer alike, times the render of every corpus and
+# benchmark scene, then prints one table and writes build/bench/results.csv and
+# build/bench/results.json. Progress goes to stderr. Fails (exit 1, after the table,
+# listing the rays) when rtk and Embree agree on fewer than 99.99% of the camera rays'
+# triangles or of the shadow rays' verdicts.
 #
 # Environment: BENCH_FIXED=1 when build-fixed/ is usable; BENCH_ASSETS (default
 # ../shared/cse457, the folder holding assets/); BENCH_SIZE (camera rays, default
@@ -17,7 +20,7 @@ OUT=build/bench
 MESH=scenes/bench/dense_mesh.yaml
 ROWS=$OUT/rows.tsv
 mkdir -p "$OUT"
-rm -f "$OUT"/rtk-*.txt "$OUT/embree.txt" # a kernel not run this time must not report old figures
+rm -f "$OUT"/rtk-*.txt "$OUT/embree.txt" "$OUT"/agree-* # a kernel not run this time must not report old figures
 
 note() { printf '%s\n' "$*" >&2; }
 # The value of `key` in a harness's "key value" output file, or empty.
@@ -61,13 +64,23 @@ fi
 progress "workload: $MESH, $SIZE camera rays and their shadow rays"
 build/bench/rtk-bench rays "$MESH" "$OUT/workload.bin" --assets "$ASSETS" --size "$SIZE" >"$OUT/rays.txt"
 progress "Embree"
-build/bench/embree-harness "$OUT/workload.bin" --repeats "$REPEATS" >"$OUT/embree.txt"
+build/bench/embree-harness "$OUT/workload.bin" --repeats "$REPEATS" --results "$OUT/embree.res" >"$OUT/embree.txt"
 for k in "${kernels[@]}"; do
     dir=build; [ "$k" = fixed ] && dir=build-fixed
     progress "rtk $k"
-    "$dir/bench/rtk-bench" run "$MESH" "$OUT/workload.bin" --assets "$ASSETS" --repeats "$REPEATS" >"$OUT/rtk-$k.txt"
+    "$dir/bench/rtk-bench" run "$MESH" "$OUT/workload.bin" --assets "$ASSETS" --repeats "$REPEATS" \
+        --results "$OUT/rtk-$k.res" >"$OUT/rtk-$k.txt"
 done
-rm -f "$OUT/workload.bin"
+# Ray by ray: rtk and Embree must agree on the triangle hit (or the miss) of 99.99% of
+# the camera rays and on 99.99% of the shadow rays; the rays that differ are listed.
+agreement=ok
+for k in "${kernels[@]}"; do
+    if ! build/bench/rtk-bench agree "$OUT/workload.bin" "$OUT/rtk-$k.res" "$OUT/embree.res" \
+        >"$OUT/agree-$k.txt" 2>"$OUT/agree-$k.list"; then
+        agreement=failed
+    fi
+done
+rm -f "$OUT/workload.bin" "$OUT"/*.res
 
 D=$OUT/rtk-double.txt F=$OUT/rtk-fixed.txt E=$OUT/embree.txt
 : >"$ROWS"
@@ -82,6 +95,10 @@ row "BVH build vs Embree 1 thread, CPU time" s "$(val $D build_cpu_s)" "$(val $F
 row "BVH build vs Embree all threads" s "$(val $D build_all_s)" "$(val $F build_all_s)" "$(val $E build_all_s)"
 row "BVH build speed-up $cpus/1 threads" x "$(speedup "$(val $D build_s)" "$(val $D build_all_s)")" \
     "$(speedup "$(val $F build_s)" "$(val $F build_all_s)")" "$(speedup "$(val $E build_s)" "$(val $E build_all_s)")"
+row "BVH build vs Embree HIGH quality, 1 thread" s "$(val $D build_s)" "$(val $F build_s)" "$(val $E build_high_s)"
+row "BVH build vs Embree HIGH quality, all threads" s "$(val $D build_all_s)" "$(val $F build_all_s)" \
+    "$(val $E build_high_all_s)"
+row "SAH cost of the tree (node visit = triangle test = 1)" count "$(val $D sah_cost)" "$(val $F sah_cost)" ""
 for q in primary shadow; do
     row "$q rays, 1 thread" Mrays/s "$(val $D ${q}_mrays_1)" "$(val $F ${q}_mrays_1)" "$(val $E ${q}_mrays_1)"
     row "$q rays, 1 thread, CPU time" Mrays/s "$(val $D ${q}_mrays_1_cpu)" "$(val $F ${q}_mrays_1_cpu)" \
@@ -90,9 +107,24 @@ for q in primary shadow; do
     row "$q speed-up $cpus/1 threads" x "$(speedup "$(val $D ${q}_mrays_all)" "$(val $D ${q}_mrays_1)")" \
         "$(speedup "$(val $F ${q}_mrays_all)" "$(val $F ${q}_mrays_1)")" \
         "$(speedup "$(val $E ${q}_mrays_all)" "$(val $E ${q}_mrays_1)")"
+    row "$q rays vs Embree's HIGH tree, 1 thread" Mrays/s "$(val $D ${q}_mrays_1)" "$(val $F ${q}_mrays_1)" \
+        "$(val $E ${q}_high_mrays_1)"
+    row "$q rays vs Embree's HIGH tree, $cpus threads" Mrays/s "$(val $D ${q}_mrays_all)" "$(val $F ${q}_mrays_all)" \
+        "$(val $E ${q}_high_mrays_all)"
+    api=rtcIntersect8; [ $q = shadow ] && api=rtcOccluded8
+    row "$q packets (4x2 px; Embree $api), 1 thread" Mrays/s \
+        "$(val $D ${q}_packets_mrays_1)" "$(val $F ${q}_packets_mrays_1)" "$(val $E ${q}_packets_mrays_1)"
+    row "$q packets, 1 thread, CPU time" Mrays/s "$(val $D ${q}_packets_mrays_1_cpu)" \
+        "$(val $F ${q}_packets_mrays_1_cpu)" "$(val $E ${q}_packets_mrays_1_cpu)"
+    row "$q packets, $cpus threads" Mrays/s "$(val $D ${q}_packets_mrays_all)" "$(val $F ${q}_packets_mrays_all)" \
+        "$(val $E ${q}_packets_mrays_all)"
     row "$q hits" count "$(val $D ${q}_hits)" "$(val $F ${q}_hits)" "$(val $E ${q}_hits)"
+    row "$q rays agreeing with Embree ray by ray" % "$(val "$OUT/agree-double.txt" ${q}_agree)" \
+        "$(val "$OUT/agree-fixed.txt" ${q}_agree)" ""
 done
 row "BVH + mesh memory" B/tri "$(val $D bytes_per_tri)" "$(val $F bytes_per_tri)" "$(val $E bytes_per_tri)"
+row "BVH + mesh memory vs Embree HIGH" B/tri "$(val $D bytes_per_tri)" "$(val $F bytes_per_tri)" \
+    "$(val $E bytes_per_tri_high)"
 
 # Sets t to the wall time of `rtk render --quiet` (load, build, render, write a PPM) for
 # one kernel, or "failed", or "" when that kernel is not built. Extra arguments go to
@@ -127,10 +159,21 @@ row "render $deep speed-up $cpus/1 threads" x "$(speedup "$t" "$(val_row "render
 rm -f "$OUT/render.ppm" "$OUT/render.err"
 
 machine=$(lscpu | sed -n 's/^Model name: *//p' | head -n1)
+compiler=$(${CC:-cc} --version | head -n1)
 embree=$(val $E kernel)
-header="rtk vs Embree ${embree#embree-} on $machine, $cpus CPUs; mesh $MESH: $(val $D triangles) triangles,"
+header="rtk vs Embree ${embree#embree-} on $machine, $cpus CPUs, Linux $(uname -r), $compiler;"
+header="$header rtk kernel $(val $D kernel_name); mesh $MESH: $(val $D triangles) triangles,"
 header="$header $(val "$OUT/rays.txt" primary_rays) camera rays ($SIZE), $(val "$OUT/rays.txt" shadow_rays) shadow rays"
 [ "$FIXED" = 1 ] || header="$header; fixed: not built"
+load="$load at start, $(cut -d' ' -f1 /proc/loadavg) at end"
 awk -v header="$header" -v fixed="$FIXED" -v csv="$OUT/results.csv" -v json="$OUT/results.json" \
     -v skipped="$(printf '%s; ' "${skipped[@]}")" -v load="$load" -f bench/report.awk "$ROWS"
 note "wrote $OUT/results.csv and $OUT/results.json"
+if [ "$agreement" != ok ]; then
+    for k in "${kernels[@]}"; do
+        echo "rtk $k against Embree, the rays that differ (rtk / Embree):"
+        cat "$OUT/agree-$k.list"
+    done
+    echo "bench: FAILED: rtk and Embree agree on fewer than 99.99% of the rays (see above)"
+    exit 1
+fi

@@ -65,17 +65,17 @@ uint32_t bench_cpu_count(void)
 
 /* The 1-thread and all-thread passes alternate, so a drift in the host's speed during
  * the measurement touches both and not just one side of the speed-up. */
-void bench_time_rays(const char *kernel, const char *name, uint32_t count, uint32_t repeats, bench_range_fn fn,
-                     void *ctx, const uint8_t *hit)
+void bench_time_rays(const char *kernel, const char *name, uint32_t items, uint32_t count, uint32_t repeats,
+                     bench_range_fn fn, void *ctx, const uint8_t *hit)
 {
     uint32_t cpus = bench_cpu_count();
     double best_1 = 0.0, best_1_cpu = 0.0, best_all = 0.0;
     for (uint32_t r = 0; r < repeats; r++) {
         fprintf(stderr, "  %s: %s rays, 1 and %u threads, %u/%u\n", kernel, name, cpus, r + 1, repeats);
         double cpu = bench_cpu_now();
-        double one = bench_parallel_for(count, 1, fn, ctx);
+        double one = bench_parallel_for(items, 1, fn, ctx);
         cpu = bench_cpu_now() - cpu;
-        double all = bench_parallel_for(count, cpus, fn, ctx);
+        double all = bench_parallel_for(items, cpus, fn, ctx);
         if (r == 0 || one < best_1) best_1 = one;
         if (r == 0 || cpu < best_1_cpu) best_1_cpu = cpu;
         if (r == 0 || all < best_all) best_all = all;

@@ -22,11 +22,12 @@ double bench_parallel_for(uint32_t count, uint32_t threads, bench_range_fn fn, v
 /* Online CPUs, at least 1. */
 uint32_t bench_cpu_count(void);
 
-/* Times fn over `count` rays with 1 thread and with all threads, the two alternating,
- * best of `repeats` each (progress on stderr, labelled `kernel`), and prints
- * "<name>_mrays_1", "<name>_mrays_1_cpu" (by CPU time), "<name>_mrays_all",
- * "<name>_rays" and "<name>_hits" (the sum of hit[], which fn fills) on stdout. */
-void bench_time_rays(const char *kernel, const char *name, uint32_t count, uint32_t repeats, bench_range_fn fn,
-                     void *ctx, const uint8_t *hit);
+/* Times fn over `items` work items (single rays, or packets) holding `rays` rays, with 1
+ * thread and with all threads, the two alternating, best of `repeats` each (progress on
+ * stderr, labelled `kernel`), and prints "<name>_mrays_1", "<name>_mrays_1_cpu" (by CPU
+ * time), "<name>_mrays_all", "<name>_rays" and "<name>_hits" (the sum of hit[0 .. rays),
+ * which fn fills) on stdout. */
+void bench_time_rays(const char *kernel, const char *name, uint32_t items, uint32_t rays, uint32_t repeats,
+                     bench_range_fn fn, void *ctx, const uint8_t *hit);
 
 #endif

@@ -1,5 +1,6 @@
 /* Bump allocator; see arena.h. */
 #include "arena.h"
+#include "invariant.h"
 
 void rt_arena_init(rt_arena *a, void *memory, size_t capacity)
 {
@@ -14,6 +15,7 @@ void *rt_arena_alloc(rt_arena *a, size_t size) { return rt_arena_alloc_aligned(a
 
 void *rt_arena_alloc_aligned(rt_arena *a, size_t size, size_t align)
 {
+    RT_ASSERT(align != 0 && (align & (align - 1)) == 0 && a->used <= a->capacity);
     size_t misalign = ((uintptr_t)a->base + a->used) & (align - 1);
     size_t start = a->used + (misalign ? align - misalign : 0);
     if (start < a->used || size > SIZE_MAX - start || start + size > a->capacity) {
@@ -25,13 +27,18 @@ void *rt_arena_alloc_aligned(rt_arena *a, size_t size, size_t align)
     return a->base + start;
 }
 
-void *rt_arena_array(rt_arena *a, size_t count, size_t size)
+void *rt_arena_alloc_array(rt_arena *a, size_t count, size_t size)
 {
     if (size != 0 && count > SIZE_MAX / size) {
         a->wanted = SIZE_MAX;
         return NULL;
     }
-    void *p = rt_arena_alloc(a, count * size);
+    return rt_arena_alloc(a, count * size);
+}
+
+void *rt_arena_array(rt_arena *a, size_t count, size_t size)
+{
+    void *p = rt_arena_alloc_array(a, count, size);
     /* -fno-builtin would keep a plain loop byte by byte; memset is allowed in the core. */
     if (p) __builtin_memset(p, 0, count * size);
     return p;

@@ -20,6 +20,8 @@ void rt_arena_init(rt_arena *a, void *memory, size_t capacity);
 void *rt_arena_alloc(rt_arena *a, size_t size);
 /* size bytes at an address that is a multiple of align (a power of two), or NULL. */
 void *rt_arena_alloc_aligned(rt_arena *a, size_t size, size_t align);
+/* count * size bytes, not zeroed; NULL on overflow of the product (wanted = SIZE_MAX) or when full. */
+void *rt_arena_alloc_array(rt_arena *a, size_t count, size_t size);
 /* count * size bytes, zeroed; NULL on overflow of the product or when full. */
 void *rt_arena_array(rt_arena *a, size_t count, size_t size);
 /* Marks for scratch use: everything allocated after the mark is released by reset. */

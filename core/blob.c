@@ -100,20 +100,28 @@ static void io_channel(blob_io *io, rt_channel *c)
     io_u32(io, &c->texture);
 }
 
+/* An enumerated setting, stored as its 32-bit value. */
+#define io_choice(io, field)                   \
+    do {                                       \
+        uint32_t value = (uint32_t) * (field); \
+        io_u32((io), &value);                  \
+        *(field) = value;                      \
+    } while (0)
+
 static void io_trace(blob_io *io, rt_trace_settings *t)
 {
     io_u32(io, &t->max_depth);
-    io_u32(io, &t->shadows);
+    io_choice(io, &t->shadows);
     io_bool(io, &t->reflections);
     io_bool(io, &t->refractions);
     io_u32(io, &t->samples_per_pixel_index);
-    io_u32(io, &t->monte_carlo);
+    io_choice(io, &t->monte_carlo);
     io_bool(io, &t->diffuse_reflection);
     io_bool(io, &t->caustics);
     io_bool(io, &t->random_single_branching);
     io_real(io, &t->focus_distance);
     io_real(io, &t->aperture_size);
-    io_u32(io, &t->sample_count_type);
+    io_choice(io, &t->sample_count_type);
     io_u32(io, &t->min_samples_index);
     io_u32(io, &t->max_samples_index);
     io_real(io, &t->difference_threshold);

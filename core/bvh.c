@@ -461,6 +461,7 @@ rt_status rt_bvh_build_planned(rt_scene *scene, rt_arena *arena, const rt_worker
 {
     uint32_t n = scene->prim_count;
     rt_bvh *bvh = &scene->bvh;
+    bvh->kernel = rt_bvh_kernel_compiled(RT_KERNEL_SSE2) ? RT_KERNEL_SSE2 : RT_KERNEL_PORTABLE;
     bvh->prim_refs = RT_NEW_ARRAY(arena, uint32_t, n > 0 ? n : 1);
     if (!bvh->prim_refs) return RT_ERR_NOMEM;
     if (n == 0) return rt_bvh_empty(bvh, arena);
@@ -495,4 +496,11 @@ rt_status rt_bvh_build_planned(rt_scene *scene, rt_arena *arena, const rt_worker
 rt_status rt_bvh_build(rt_scene *scene, rt_arena *arena, const rt_workers *workers)
 {
     return rt_bvh_build_planned(scene, arena, workers, rt_bvh_default_plan());
+}
+
+bool rt_bvh_set_kernel(rt_bvh *bvh, rt_kernel k)
+{
+    if (!rt_bvh_kernel_compiled(k)) return false;
+    bvh->kernel = k;
+    return true;
 }

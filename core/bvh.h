@@ -33,4 +33,11 @@ rt_aabb rt_bvh_child_box(const rt_bvh *bvh, const rt_bvh_node *node, int c);
 /* The world-space bounds of primitive `prim`. */
 rt_aabb rt_bvh_prim_bounds(const rt_scene *scene, uint32_t prim);
 
+/* Whether this build of the core has kernel k (the CPU must have its instructions too). */
+bool rt_bvh_kernel_compiled(rt_kernel k);
+/* Sets the BVH's kernel to k if the core has it; returns whether it did. */
+bool rt_bvh_set_kernel(rt_bvh *bvh, rt_kernel k);
+/* Whether the BVH's kernel traces the stream queries in packets. */
+bool rt_bvh_packets(const rt_bvh *bvh);
+
 #endif

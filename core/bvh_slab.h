@@ -1,10 +1,12 @@
-/* The per-ray box tests of the BVH queries (scene_query.c): a ray's slab set-up, and the
- * test of a node's four children in the double build with SSE2, in the fixed build with
- * integer bounds, and one by one otherwise. Included by scene_query.c only. */
+/* The per-ray box tests of the general BVH walk (scene_query.c): a ray's slab set-up, and
+ * the test of a node's four children in the double build with SSE2, in the fixed build
+ * with integer bounds, and one by one otherwise. (Most rays of the double build on x86
+ * take the float walk of bvh_float.h instead.) Included by scene_query.c only. */
 #ifndef RT_BVH_SLAB_H
 #define RT_BVH_SLAB_H
 
 #include "bvh.h"
+#include "scene_query.h"
 
 /* The double build tests a node's four children two at a time with SSE2 (x86-64's
  * baseline), the fixed build with integer bounds (below); other targets and unusual
@@ -33,45 +35,7 @@ static inline v2df v2df_from_hi(v4sf a)
     return __builtin_ia32_cvtps2pd(__builtin_ia32_movhlps(a, a));
 #endif
 }
-/* The double build's box test in single precision, four children per register, for
- * most rays. Culling only has to be a superset of the double test's hits (boxes are
- * padded beyond any rounding of a hit's t), so each plane's distance is bounded from
- * below (near planes) or above (far planes) rather than rounded: the origin is rounded
- * to the float on the safe side for each (o_near, o_far), and the reciprocal shrunk
- * (near) or grown (far) by 2^-21, more than the three float roundings of a distance
- * (difference, product, the reciprocal's conversion) and the double test's own two:
- * (1 + 2^-24)^4 (1 - 2^-21) < 1 - 2^-52. That bounds positive distances; a near distance
- * that comes out negative is below t_min > 0 anyway, and a far distance matters only
- * where the double test hits, at or beyond t_min > 0. So the entry distance is at or
- * below the double test's and the exit at or above it. Rays with t_min < 2^-100 (below
- * it float products could be subnormal), or whose distances could leave the float range
- * ((extent + |o|) |inv| > 2^120, |inv| outside [2^-100, 2^100]), take the double test. */
-typedef struct {
-    v4sf o_near[3], o_far[3], inv_near[3], inv_far[3], t_min; /* each value in all four lanes */
-    rt_real t_max;                                            /* the ray's t_max, */
-    float t_max_f;                                            /* rounded up */
-} float_slab;
 
-static inline v4sf v4sf_all(float f) { return (v4sf){f, f, f, f}; }
-
-/* Fills *f for the ray and returns true, or false if the ray must take the double test. */
-static bool float_slab_prepare(rt_vec3 origin, rt_vec3 inv, rt_real t_min, rt_real t_max, rt_real extent, float_slab *f)
-{
-    f->t_max = t_max;
-    f->t_max_f = rt_bound_above(t_max, 0);
-    if (!(t_min >= 0x1p-100)) return false;
-    for (int k = 0; k < 3; k++) {
-        rt_real o = rt_v3_get(origin, k), iv = rt_v3_get(inv, k), mag = rt_abs(iv);
-        if (!(mag >= 0x1p-100 && mag <= 0x1p100 && (extent + rt_abs(o)) * mag <= 0x1p120)) return false;
-        /* (p - o') inv <= (p - o) inv needs o' >= o for inv > 0, o' <= o for inv < 0. */
-        f->o_near[k] = v4sf_all(iv > 0 ? rt_bound_above(o, 0) : rt_bound_below(o, 0));
-        f->o_far[k] = v4sf_all(iv > 0 ? rt_bound_below(o, 0) : rt_bound_above(o, 0));
-        f->inv_near[k] = v4sf_all((float)(iv * (1.0 - 0x1p-21)));
-        f->inv_far[k] = v4sf_all((float)(iv * (1.0 + 0x1p-21)));
-    }
-    f->t_min = v4sf_all(rt_bound_below(t_min, 0));
-    return true;
-}
 #else
 #define SLAB_SSE2 0
 #endif
@@ -170,8 +134,6 @@ typedef struct {
     const rt_bvh *bvh;
 #if SLAB_SSE2
     v2df origin2[3], inv2[3], t_min2; /* each value in both lanes */
-    float_slab fs;
-    bool single; /* fs is usable: the float test */
 #endif
 #ifdef RT_REAL_FIXED
     fixed_slab fx;
@@ -202,9 +164,6 @@ static slab_ray slab_prepare(const rt_ray_setup *rs, const rt_bvh *bvh)
 #endif
     r.general = d.x == RT_ZERO || d.y == RT_ZERO || d.z == RT_ZERO || !rt_is_finite(inv.x) || !rt_is_finite(inv.y) ||
                 !rt_is_finite(inv.z) || !rt_is_finite(o.x) || !rt_is_finite(o.y) || !rt_is_finite(o.z);
-#if SLAB_SSE2
-    r.single = !r.general && float_slab_prepare(o, inv, r.t_min, rs->ray.t_max, bvh->extent, &r.fs);
-#endif
 #ifdef RT_REAL_FIXED
     r.fx = fixed_slab_prepare(o, inv, r.t_min, bvh->grid);
     r.general = r.general || !r.fx.usable;
@@ -272,35 +231,6 @@ __attribute__((always_inline)) static inline unsigned slab_hit_sse2(const slab_r
 }
 #endif
 
-#if SLAB_SSE2
-__attribute__((always_inline)) static inline void float_axis(const float_slab *f, const rt_bvh_node *node, int near,
-                                                             int far, int k, v4sf *t0, v4sf *t1)
-{
-    *t0 = __builtin_ia32_maxps(*t0, (*(const v4sf *)node->box[near] - f->o_near[k]) * f->inv_near[k]);
-    *t1 = __builtin_ia32_minps(*t1, (*(const v4sf *)node->box[far] - f->o_far[k]) * f->inv_far[k]);
-}
-
-/* All four children with float_slab's bounds: a superset of slab_hit_sse2's hits, and
- * entry distances at or below its ones. */
-__attribute__((always_inline)) static inline unsigned slab_hit_float(const slab_ray *r, const rt_bvh_node *node,
-                                                                     rt_real t_max, rt_real t_enter[RT_BVH_WIDTH])
-{
-    const float_slab *f = &r->fs;
-    v4sf t0 = f->t_min, t1 = v4sf_all(t_max == f->t_max ? f->t_max_f : rt_bound_above(t_max, 0));
-    float_axis(f, node, r->near[0], r->far[0], 0, &t0, &t1);
-    float_axis(f, node, r->near[1], r->far[1], 1, &t0, &t1);
-    float_axis(f, node, r->near[2], r->far[2], 2, &t0, &t1);
-    v2df lo = v2df_from_lo(t0), hi = v2df_from_hi(t0);
-    t_enter[0] = lo[0];
-    t_enter[1] = lo[1];
-    t_enter[2] = hi[0];
-    t_enter[3] = hi[1];
-    unsigned hits = (unsigned)__builtin_ia32_movmskps(__builtin_ia32_cmpleps(t0, t1));
-    v4su unused = *(const v4su *)node->count == RT_BVH_NO_CHILD;
-    return hits & ~(unsigned)__builtin_ia32_movmskps((v4sf)unused);
-}
-#endif
-
 #ifdef RT_REAL_FIXED
 /* Child c's plane in `row` (a row of the node's boxes): its bound in units (see fixed_slab). */
 __attribute__((always_inline)) static inline int64_t fixed_plane(const rt_bound *row, int c, int64_t o, int64_t m)
@@ -340,7 +270,6 @@ __attribute__((always_inline)) static inline unsigned slab_hit_children(const sl
                                                                         rt_real t_max, rt_real t_enter[RT_BVH_WIDTH])
 {
 #if SLAB_SSE2
-    if (r->single) return slab_hit_float(r, node, t_max, t_enter);
     if (!r->general) return slab_hit_sse2(r, node, t_max, t_enter);
 #endif
 #ifdef RT_REAL_FIXED

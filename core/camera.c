@@ -51,7 +51,7 @@ uint32_t rt_camera_samples(const rt_camera *cam) { return 1u << (2 * cam->trace.
 
 rt_ray rt_camera_grid_ray(const rt_camera *cam, uint32_t column, uint32_t row, uint32_t a, uint32_t b, uint32_t side)
 {
-    uint32_t j = cam->height - 1 - row; /* buffer rows count from the bottom */
+    uint32_t j = rt_camera_row_from_bottom(cam, row);
     rt_real s = rt_from_int(side);
     rt_real x =
         rt_div(rt_add(rt_from_int(column), rt_div(rt_add(rt_from_int(a), RT_C(0.5)), s)), rt_from_int(cam->width));

@@ -5,6 +5,9 @@
 #include "ray.h"
 #include "scene.h"
 
+/* The image's y counts rows from the bottom (format §8), the buffer's from the top. */
+static inline uint32_t rt_camera_row_from_bottom(const rt_camera *cam, uint32_t row) { return cam->height - 1 - row; }
+
 /* The camera ray through image point (x, y) in [0,1]^2, y = 0 at the bottom (format §8). */
 rt_ray rt_camera_ray(const rt_camera *cam, rt_real x, rt_real y);
 /* The same through the point `lens` ([0,1)^2, mapped to the disc of diameter Aperture

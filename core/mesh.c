@@ -2,22 +2,13 @@
  * Loop subdivision (§7.4). All memory comes from the caller's arena; scratch is
  * released before returning, on success and on failure alike. */
 #include "mesh.h"
+#include "hash.h"
 
 #define NONE UINT32_MAX
 /* Valences below this use precomputed weights and cosines. */
 #define LOOP_TABLE 16
 
 /* ---- shared helpers ---- */
-
-/* The splitmix64 finaliser: spreads keys over a power-of-two hash table. */
-static uint64_t mix(uint64_t x)
-{
-    x ^= x >> 30;
-    x *= 0xbf58476d1ce4e5b9u;
-    x ^= x >> 27;
-    x *= 0x94d049bb133111ebu;
-    return x ^ (x >> 31);
-}
 
 /* A power of two at least twice n (load factor <= 1/2), or 0 when that overflows. */
 static size_t table_size(size_t n)
@@ -30,16 +21,6 @@ static size_t table_size(size_t n)
     return cap;
 }
 
-/* count * size bytes, not zeroed; NULL when the arena is full or the product overflows. */
-static void *take(rt_arena *arena, size_t count, size_t size)
-{
-    if (size != 0 && count > SIZE_MAX / size) {
-        arena->wanted = SIZE_MAX;
-        return NULL;
-    }
-    return rt_arena_alloc(arena, count * size);
-}
-
 static bool mesh_is_valid(const rt_mesh_desc *m)
 {
     if (m->vertex_count >= NONE || (m->vertex_count > 0 && !m->positions)) return false;
@@ -48,8 +29,6 @@ static bool mesh_is_valid(const rt_mesh_desc *m)
         if (m->indices[i] >= m->vertex_count) return false;
     return true;
 }
-
-static rt_vec3 v3_div(rt_vec3 a, rt_real d) { return rt_v3(rt_div(a.x, d), rt_div(a.y, d), rt_div(a.z, d)); }
 
 /* ---- smooth normals ---- */
 
@@ -61,24 +40,19 @@ static bool same_bits(const rt_vec3 *a, const rt_vec3 *b)
     return true;
 }
 
-static uint64_t hash_bits(const rt_vec3 *p)
-{
-    const uint8_t *x = (const uint8_t *)p;
-    uint64_t h = 0xcbf29ce484222325u; /* FNV-1a over the bytes */
-    for (size_t i = 0; i < sizeof *p; i++) h = (h ^ x[i]) * 0x100000001b3u;
-    return mix(h);
-}
+/* Spread over a power-of-two table. */
+static uint64_t hash_bits(const rt_vec3 *p) { return rt_hash_mix(rt_hash_bytes(p, sizeof *p)); }
 
 rt_status rt_mesh_smooth_normals(const rt_mesh_desc *mesh, rt_arena *arena, rt_vec3 **normals_out)
 {
     if (!mesh_is_valid(mesh)) return RT_ERR_INVALID;
     size_t mark = rt_arena_mark(arena);
     uint32_t n = mesh->vertex_count;
-    rt_vec3 *normals = take(arena, n, sizeof *normals);
+    rt_vec3 *normals = rt_arena_alloc_array(arena, n, sizeof *normals);
     size_t scratch = rt_arena_mark(arena);
     size_t cap = table_size(n);
     /* rep[v]: the first vertex with v's exact position; slots hold vertex + 1, 0 = empty. */
-    uint32_t *rep = take(arena, n, sizeof *rep);
+    uint32_t *rep = rt_arena_alloc_array(arena, n, sizeof *rep);
     rt_vec3 *sum = RT_NEW_ARRAY(arena, rt_vec3, n);
     uint32_t *slots = cap ? RT_NEW_ARRAY(arena, uint32_t, cap) : NULL;
     if (!normals || !rep || !sum || !slots) {
@@ -149,7 +123,7 @@ static rt_status number_edges(const rt_mesh_desc *m, uint32_t *tri_edge, rt_aren
     size_t mark = rt_arena_mark(arena);
     size_t corners = 3 * (size_t)m->triangle_count, cap = table_size(corners);
     uint32_t *slots = cap ? RT_NEW_ARRAY(arena, uint32_t, cap) : NULL; /* edge + 1, 0 = empty */
-    uint64_t *keys = take(arena, corners, sizeof *keys);
+    uint64_t *keys = rt_arena_alloc_array(arena, corners, sizeof *keys);
     if (!slots || !keys) {
         if (!cap) arena->wanted = SIZE_MAX;
         rt_arena_reset(arena, mark);
@@ -159,7 +133,7 @@ static rt_status number_edges(const rt_mesh_desc *m, uint32_t *tri_edge, rt_aren
     for (size_t c = 0; c < corners; c++) {
         uint32_t a = m->indices[c], b = m->indices[c % 3 == 2 ? c - 2 : c + 1];
         uint64_t key = a < b ? (uint64_t)a << 32 | b : (uint64_t)b << 32 | a;
-        size_t s = mix(key) & (cap - 1);
+        size_t s = rt_hash_mix(key) & (cap - 1);
         while (slots[s] != 0 && keys[slots[s] - 1] != key) s = (s + 1) & (cap - 1);
         if (slots[s] == 0) {
             keys[count] = key;
@@ -215,10 +189,10 @@ static rt_status ring_builder_init(ring_builder *b, const uint32_t *idx, uint32_
 {
     b->indices = idx;
     b->offsets = RT_NEW_ARRAY(arena, uint32_t, (size_t)nv + 1);
-    b->corners = take(arena, corners, sizeof *b->corners);
+    b->corners = rt_arena_alloc_array(arena, corners, sizeof *b->corners);
     b->seen = RT_NEW_ARRAY(arena, uint32_t, nv);
     b->head_mark = RT_NEW_ARRAY(arena, uint32_t, nv);
-    b->head = take(arena, nv, sizeof *b->head);
+    b->head = rt_arena_alloc_array(arena, nv, sizeof *b->head);
     b->z_mark = RT_NEW_ARRAY(arena, uint32_t, nv);
     if (!b->offsets || !b->corners || !b->seen || !b->head_mark || !b->head || !b->z_mark) return RT_ERR_NOMEM;
     for (size_t c = 0; c < corners; c++) b->offsets[idx[c] + 1]++;
@@ -232,11 +206,11 @@ static rt_status ring_builder_init(ring_builder *b, const uint32_t *idx, uint32_
     for (size_t c = 0; c < corners; c++) b->corners[b->offsets[idx[c]]++] = (uint32_t)c;
     for (uint32_t v = nv; v > 0; v--) b->offsets[v] = b->offsets[v - 1];
     b->offsets[0] = 0;
-    b->wy = take(arena, most, sizeof *b->wy);
-    b->wz = take(arena, most, sizeof *b->wz);
-    b->link = take(arena, most, sizeof *b->link);
-    b->used = take(arena, most, sizeof *b->used);
-    b->ring = take(arena, 2 * (size_t)most, sizeof *b->ring);
+    b->wy = rt_arena_alloc_array(arena, most, sizeof *b->wy);
+    b->wz = rt_arena_alloc_array(arena, most, sizeof *b->wz);
+    b->link = rt_arena_alloc_array(arena, most, sizeof *b->link);
+    b->used = rt_arena_alloc_array(arena, most, sizeof *b->used);
+    b->ring = rt_arena_alloc_array(arena, 2 * (size_t)most, sizeof *b->ring);
     return b->wy && b->wz && b->link && b->used && b->ring ? RT_OK : RT_ERR_NOMEM;
 }
 
@@ -325,7 +299,7 @@ static void smooth(ring_builder *b, const loop_table *w, uint32_t nv, const rt_v
         for (uint32_t i = 0; i < k; i++) s = rt_v3_add(s, from[b->ring[i]]);
         rt_real kr = rt_from_int(k), beta = loop_beta(w, k);
         rt_real alpha = rt_div(rt_mul(kr, rt_sub(RT_ONE, beta)), beta);
-        to[v] = v3_div(rt_v3_add(rt_v3_scale(from[v], alpha), s), rt_add(alpha, kr));
+        to[v] = rt_v3_div(rt_v3_add(rt_v3_scale(from[v], alpha), s), rt_add(alpha, kr));
     }
 }
 
@@ -346,7 +320,7 @@ static void limit(ring_builder *b, const loop_table *w, uint32_t nv, const rt_ve
             continue;
         }
         rt_real kr = rt_from_int(k), eps = rt_div(rt_mul(RT_C(3.0), kr), loop_beta(w, k));
-        pos[v] = v3_div(rt_v3_add(rt_v3_scale(q[v], eps), s), rt_add(eps, kr));
+        pos[v] = rt_v3_div(rt_v3_add(rt_v3_scale(q[v], eps), s), rt_add(eps, kr));
         rt_vec3 n = rt_v3_cross(t1, t2);
         /* Valence 2 (a corner of a lone triangle) makes t2 = -t1. */
         normals[v] = rt_v3_is_zero(n) ? wedge_normal(b, q, v) : rt_v3_normalize(n);
@@ -364,17 +338,17 @@ static rt_status subdivide_once(const rt_mesh_desc *in, bool last, const loop_ta
         arena->wanted = SIZE_MAX;
         return RT_ERR_NOMEM;
     }
-    uint32_t *tri_edge = take(arena, 3 * (size_t)in->triangle_count, sizeof *tri_edge);
+    uint32_t *tri_edge = rt_arena_alloc_array(arena, 3 * (size_t)in->triangle_count, sizeof *tri_edge);
     uint32_t edges;
     if (!tri_edge) return RT_ERR_NOMEM;
     rt_status st = number_edges(in, tri_edge, arena, &edges);
     if (st != RT_OK) return st;
     uint32_t nv = in->vertex_count + edges, nt = 4 * in->triangle_count;
-    uint32_t *idx = take(arena, 3 * (size_t)nt, sizeof *idx);
-    rt_vec2 *uv = in->uvs ? take(arena, nv, sizeof *uv) : NULL;
-    rt_vec3 *pos = take(arena, nv, sizeof *pos);
-    rt_vec3 *normals = last ? take(arena, nv, sizeof *normals) : NULL;
-    rt_vec3 *other = take(arena, nv, sizeof *other);
+    uint32_t *idx = rt_arena_alloc_array(arena, 3 * (size_t)nt, sizeof *idx);
+    rt_vec2 *uv = in->uvs ? rt_arena_alloc_array(arena, nv, sizeof *uv) : NULL;
+    rt_vec3 *pos = rt_arena_alloc_array(arena, nv, sizeof *pos);
+    rt_vec3 *normals = last ? rt_arena_alloc_array(arena, nv, sizeof *normals) : NULL;
+    rt_vec3 *other = rt_arena_alloc_array(arena, nv, sizeof *other);
     if (!idx || (in->uvs && !uv) || !pos || (last && !normals) || !other) return RT_ERR_NOMEM;
     /* Intermediate levels: split into scratch, average into the output. The last level:
      * split into the output, average into scratch, project back into the output. */

@@ -164,9 +164,9 @@ rt_vec3 rt_path_trace(const rt_tracer *tr, const rt_sampler *s, rt_ray ray)
     pa.tr = tr;
     pa.sampler = s;
     /* Which keys are in effect follows the skeleton (format §12). */
-    pa.diffuse = set->monte_carlo != 0 && set->reflections && set->diffuse_reflection;
-    pa.caustics = pa.diffuse && set->shadows != 0 && set->caustics;
-    pa.single_branch = set->monte_carlo != 0 && set->random_single_branching;
+    pa.diffuse = set->monte_carlo != RT_MONTE_CARLO_OFF && set->reflections && set->diffuse_reflection;
+    pa.caustics = pa.diffuse && set->shadows != RT_SHADOWS_NONE && set->caustics;
+    pa.single_branch = set->monte_carlo != RT_MONTE_CARLO_OFF && set->random_single_branching;
     branch camera = make_branch(RT_RAY_CAMERA, ray.direction, rt_v3(RT_ONE, RT_ONE, RT_ONE));
     return trace_path(&pa, &camera, ray, 0, 0, RT_NO_PARENT, false);
 }

@@ -1,5 +1,6 @@
 /* Filling the debugger's ray log; see raylog.h. */
 #include "raylog.h"
+#include "invariant.h"
 
 uint32_t rt_raylog_begin(rt_ray_log *log, rt_ray_kind kind, uint32_t parent, uint32_t depth, const rt_ray *ray)
 {
@@ -18,7 +19,12 @@ uint32_t rt_raylog_begin(rt_ray_log *log, rt_ray_kind kind, uint32_t parent, uin
     return log->ray_count++;
 }
 
-rt_ray_record *rt_raylog_ray(rt_ray_log *log, uint32_t id) { return log && id != RT_NO_PARENT ? &log->rays[id] : 0; }
+rt_ray_record *rt_raylog_ray(rt_ray_log *log, uint32_t id)
+{
+    if (!log || id == RT_NO_PARENT) return 0;
+    RT_ASSERT(id < log->ray_count);
+    return &log->rays[id];
+}
 
 void rt_raylog_light(rt_ray_log *log, const rt_light_record *rec)
 {

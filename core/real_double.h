@@ -5,6 +5,7 @@
 #define RT_REAL_DOUBLE_H
 
 typedef double rt_real;
+_Static_assert(sizeof(rt_real) == 8, "the double build needs IEEE binary64");
 
 #define RT_REAL_NAME "double"
 /* A compile-time constant from a decimal literal. */

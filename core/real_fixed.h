@@ -9,6 +9,7 @@
 #define RT_REAL_FIXED_H
 
 typedef int64_t rt_real;
+_Static_assert(sizeof(rt_real) == 8, "Q32.32 needs a 64-bit integer");
 
 #define RT_REAL_NAME "fixed"
 /* A compile-time constant from a decimal literal: round(x * 2^32), saturated. It folds

@@ -18,6 +18,16 @@ rt_vec3 rt_render_pixel(const rt_tracer *tr, uint32_t column, uint32_t row);
  * at the top), each channel quantised as the sample solution does (format §11.3). */
 void rt_render_region(const rt_tracer *tr, uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1, uint8_t *rgb);
 
+/* A half-open pixel rectangle of the frame: columns [x0, x1), rows [y0, y1), row 0 at the top. */
+typedef struct {
+    uint32_t x0, y0, x1, y1;
+} rt_rect;
+
+/* rt_render_region into a buffer that holds only the frame's rectangle `held` (row by row,
+ * (held.x1 - held.x0) * 3 bytes a row), which contains `area`: a part of a large frame
+ * needs no buffer for the whole frame. */
+void rt_render_rect(const rt_tracer *tr, rt_rect area, rt_rect held, uint8_t *rgb);
+
 /* One 8-bit channel from an unclamped colour value. */
 uint8_t rt_render_color_byte(rt_real c);
 

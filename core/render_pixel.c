@@ -4,16 +4,15 @@
 #include "path_trace.h"
 #include "render.h"
 
-static rt_vec3 v3_div(rt_vec3 a, rt_real d) { return rt_v3(rt_div(a.x, d), rt_div(a.y, d), rt_div(a.z, d)); }
-
 /* One Monte Carlo sample: pixel position, lens point and path, with every 2D draw in
  * one of 4^strata_log strata in stratified mode (Monte Carlo 2), uniform otherwise. */
 static rt_vec3 random_sample(const rt_tracer *tr, uint32_t column, uint32_t row, uint32_t sample, uint32_t strata_log)
 {
     const rt_camera *cam = &tr->scene->camera;
-    rt_sampler s = {rt_rng_pixel_key(column, row), sample, cam->trace.monte_carlo == 2 ? strata_log : 0};
+    rt_sampler s = {rt_rng_pixel_key(column, row), sample,
+                    cam->trace.monte_carlo == RT_MONTE_CARLO_STRATIFIED ? strata_log : 0};
     rt_vec2 u = rt_sample_2d(&s, 0, RT_PURPOSE_PIXEL);
-    uint32_t j = cam->height - 1 - row; /* buffer rows count from the bottom */
+    uint32_t j = rt_camera_row_from_bottom(cam, row);
     rt_real x = rt_div(rt_add(rt_from_int(column), u.u), rt_from_int(cam->width));
     rt_real y = rt_div(rt_add(rt_from_int(j), u.v), rt_from_int(cam->height));
     return rt_path_trace(tr, &s, rt_camera_lens_ray(cam, x, y, rt_sample_2d(&s, 0, RT_PURPOSE_LENS)));
@@ -22,7 +21,8 @@ static rt_vec3 random_sample(const rt_tracer *tr, uint32_t column, uint32_t row,
 rt_vec3 rt_render_sample(const rt_tracer *tr, uint32_t column, uint32_t row, uint32_t sample)
 {
     const rt_camera *cam = &tr->scene->camera;
-    if (cam->trace.monte_carlo == 0) return rt_trace(tr, rt_camera_pixel_ray(cam, column, row, sample), 0);
+    if (cam->trace.monte_carlo == RT_MONTE_CARLO_OFF)
+        return rt_trace(tr, rt_camera_pixel_ray(cam, column, row, sample), 0);
     return random_sample(tr, column, row, sample, cam->trace.samples_per_pixel_index);
 }
 
@@ -31,7 +31,7 @@ static rt_vec3 constant_pixel(const rt_tracer *tr, uint32_t column, uint32_t row
     uint32_t n = rt_camera_samples(&tr->scene->camera);
     rt_vec3 sum = rt_v3(RT_ZERO, RT_ZERO, RT_ZERO);
     for (uint32_t k = 0; k < n; k++) sum = rt_v3_add(sum, rt_render_sample(tr, column, row, k));
-    return n == 1 ? sum : v3_div(sum, rt_from_int(n));
+    return n == 1 ? sum : rt_v3_div(sum, rt_from_int(n));
 }
 
 /* ---- Adaptive recursive (type 1, deterministic mode) ---- */
@@ -89,7 +89,7 @@ static rt_vec3 adaptive_pixel(const rt_tracer *tr, uint32_t column, uint32_t row
     const rt_camera *cam = &tr->scene->camera;
     adaptive a = {tr,
                   column,
-                  cam->height - 1 - row,
+                  rt_camera_row_from_bottom(cam, row),
                   cam->trace.min_samples_index,
                   cam->trace.max_samples_index + 1,
                   rt_mul(cam->trace.difference_threshold, cam->trace.difference_threshold)};
@@ -116,7 +116,7 @@ static rt_vec3 std_error_pixel(const rt_tracer *tr, uint32_t column, uint32_t ro
     uint32_t n = 0;
     while (n < most) {
         rt_vec3 c;
-        if (cam->trace.monte_carlo != 0) {
+        if (cam->trace.monte_carlo != RT_MONTE_CARLO_OFF) {
             c = random_sample(tr, column, row, n, grid_log);
         } else {
             uint32_t cell = rt_rng_permute(n, 2 * grid_log, key);
@@ -128,18 +128,19 @@ static rt_vec3 std_error_pixel(const rt_tracer *tr, uint32_t column, uint32_t ro
         if (n < least || n < 2) continue;
         /* Squared standard error per channel: (sum_sq - sum^2 / n) / ((n - 1) n). */
         rt_real count = rt_from_int(n), scale = rt_mul(count, rt_from_int(n - 1));
-        rt_vec3 spread = rt_v3_sub(sum_sq, v3_div(rt_v3_mul(sum, sum), count));
-        rt_vec3 se2 = v3_div(spread, scale);
+        rt_vec3 spread = rt_v3_sub(sum_sq, rt_v3_div(rt_v3_mul(sum, sum), count));
+        rt_vec3 se2 = rt_v3_div(spread, scale);
         if (rt_max(rt_max(se2.x, se2.y), se2.z) < t2) break;
     }
-    return v3_div(sum, rt_from_int(n));
+    return rt_v3_div(sum, rt_from_int(n));
 }
 
 rt_vec3 rt_render_pixel(const rt_tracer *tr, uint32_t column, uint32_t row)
 {
     const rt_trace_settings *set = &tr->scene->camera.trace;
-    if (set->sample_count_type == 2) return std_error_pixel(tr, column, row);
+    if (set->sample_count_type == RT_SAMPLES_STD_ERROR) return std_error_pixel(tr, column, row);
     /* The skeleton turns adaptive recursion off in Monte Carlo mode (format §11.1). */
-    if (set->sample_count_type == 1 && set->monte_carlo == 0) return adaptive_pixel(tr, column, row);
+    if (set->sample_count_type == RT_SAMPLES_ADAPTIVE && set->monte_carlo == RT_MONTE_CARLO_OFF)
+        return adaptive_pixel(tr, column, row);
     return constant_pixel(tr, column, row);
 }

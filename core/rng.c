@@ -1,18 +1,12 @@
 /* Counter-based random numbers; see rng.h. */
 #include "rng.h"
+#include "hash.h"
+#include "invariant.h"
 
 /* 2^64 / golden ratio: keeps a zero input away from mix's fixed point at 0. */
 #define RT_RNG_GOLDEN 0x9e3779b97f4a7c15ull
 
-/* The SplitMix64 finalizer: a bijection of 64-bit words with full avalanche. */
-static uint64_t mix(uint64_t z)
-{
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-}
-
-uint64_t rt_rng_hash(uint64_t a, uint64_t b) { return mix(mix(a + RT_RNG_GOLDEN) + b); }
+uint64_t rt_rng_hash(uint64_t a, uint64_t b) { return rt_hash_mix(rt_hash_mix(a + RT_RNG_GOLDEN) + b); }
 
 uint64_t rt_rng_pixel_key(uint32_t column, uint32_t row)
 {
@@ -31,6 +25,7 @@ rt_real rt_rng_unit(uint64_t bits)
 
 uint32_t rt_rng_permute(uint32_t index, uint32_t bits, uint64_t key)
 {
+    RT_ASSERT(bits <= 30);
     if (bits == 0) return 0;
     uint32_t mask = (1u << bits) - 1, x = index & mask;
     /* Each step is a bijection of bits-wide words: xor with a constant, multiplication

@@ -1,9 +1,11 @@
 /* Stratified draws and their warps; see sample.h. */
 #include "sample.h"
+#include "invariant.h"
 
 rt_vec2 rt_sample_2d(const rt_sampler *s, uint64_t node, uint32_t purpose)
 {
     uint64_t key = rt_rng_hash(rt_rng_hash(s->pixel, node), purpose);
+    RT_ASSERT(s->strata_log <= 15 && (s->strata_log == 0 || s->sample >> (2 * s->strata_log) == 0));
     uint32_t stratum = rt_rng_permute(s->sample, 2 * s->strata_log, key);
     uint32_t side = 1u << s->strata_log;
     uint64_t jitter = rt_rng_hash(key, s->sample);

@@ -11,9 +11,41 @@
 #include "workers.h"
 
 #define RT_NO_TEXTURE UINT32_MAX
+
+/* The limits of what a scene may ask for, in one place for the loaders, the build and
+ * the blob reader. */
 #define RT_MAX_SUBDIVISION 5
 /* Rays recurse on the C stack: deeper scenes are rejected, not crashed. */
 #define RT_MAX_RECURSION_DEPTH 64
+/* Image sides, rendered or read as textures: a 16384 x 16384 RGB image is 768 MiB. */
+#define RT_MAX_IMAGE_SIDE 16384u
+/* Samples Per Pixel is an index: 4^index samples, index 0..7 (16384 samples). */
+#define RT_MAX_SPP_INDEX 7
+/* Minimum / Maximum Samples of the adaptive types: 4^min .. 4^(max+1). */
+#define RT_MAX_MIN_SAMPLES_INDEX 4
+#define RT_MAX_MAX_SAMPLES_INDEX 6
+
+/* The Shadows setting (format §10.1). */
+typedef enum {
+    RT_SHADOWS_NONE,
+    RT_SHADOWS_OPAQUE,
+    RT_SHADOWS_COLOURED,
+    RT_SHADOWS_LAST = RT_SHADOWS_COLOURED
+} rt_shadow_mode;
+/* The Monte Carlo setting (§12): off (Whitted), uniform or stratified random samples. */
+typedef enum {
+    RT_MONTE_CARLO_OFF,
+    RT_MONTE_CARLO_UNIFORM,
+    RT_MONTE_CARLO_STRATIFIED,
+    RT_MONTE_CARLO_LAST = RT_MONTE_CARLO_STRATIFIED
+} rt_monte_carlo_mode;
+/* The Sample Count Type setting (§11.1). */
+typedef enum {
+    RT_SAMPLES_CONSTANT,
+    RT_SAMPLES_ADAPTIVE,  /* recursive subdivision while corner colours differ */
+    RT_SAMPLES_STD_ERROR, /* until the mean's standard error is small */
+    RT_SAMPLES_LAST = RT_SAMPLES_STD_ERROR
+} rt_sample_count_type;
 
 /* ---- Description: filled in by a loader, consumed by rt_scene_build. ---- */
 
@@ -68,15 +100,15 @@ typedef struct {
 
 typedef struct {
     uint32_t max_depth;
-    uint32_t shadows; /* 0 none, 1 opaque, 2 coloured */
+    rt_shadow_mode shadows;
     bool reflections, refractions;
     uint32_t samples_per_pixel_index; /* samples = 4^index */
-    uint32_t monte_carlo;             /* 0 off, 1 uniform random, 2 stratified random (format §12) */
+    rt_monte_carlo_mode monte_carlo;
     bool diffuse_reflection, caustics, random_single_branching;
     rt_real focus_distance, aperture_size;
-    uint32_t sample_count_type;   /* 0 constant, 1 adaptive (recursive), 2 standard error (§11.1) */
-    uint32_t min_samples_index;   /* adaptive types: at least 4^index samples, index 0..4 */
-    uint32_t max_samples_index;   /* adaptive types: at most 4^(index+1) samples, index 0..6 */
+    rt_sample_count_type sample_count_type;
+    uint32_t min_samples_index;   /* adaptive types: at least 4^index samples */
+    uint32_t max_samples_index;   /* adaptive types: at most 4^(index+1) samples */
     rt_real difference_threshold; /* type 1: split while corner colours differ by more */
     rt_real std_error_threshold;  /* type 2: stop once the mean's standard error is below */
 } rt_trace_settings;
@@ -153,6 +185,15 @@ typedef struct {
     uint32_t count[RT_BVH_WIDTH];
 } rt_bvh_node;
 
+/* The query code the BVH runs: every kernel gives the same results. The build picks the
+ * best one the compiler's target guarantees (SSE2 on x86-64); the platform may pick
+ * another with rt_bvh_set_kernel after asking the CPU (the core never does). */
+typedef enum {
+    RT_KERNEL_PORTABLE, /* the general walk, one ray at a time */
+    RT_KERNEL_SSE2,     /* float box tests (double build, x86), packets in 128-bit vectors */
+    RT_KERNEL_AVX2      /* the same with packets in 256-bit vectors */
+} rt_kernel;
+
 typedef struct {
     rt_bvh_node *nodes;
     uint32_t node_count;
@@ -160,6 +201,7 @@ typedef struct {
     uint32_t depth;
     int grid;       /* of the nodes' boxes (rt_bound_grid) */
     rt_real extent; /* the largest |coordinate| of the primitives' padded bounds (0 for none) */
+    rt_kernel kernel;
 } rt_bvh;
 
 typedef struct {
@@ -200,5 +242,9 @@ typedef struct {
  * BVH on the workers (NULL: on this thread; the scene is the same either way). */
 rt_status rt_scene_build(const rt_scene_desc *desc, rt_arena *arena, const rt_workers *workers, rt_scene *out,
                          rt_build_error *err);
+
+/* The unit direction towards a directional light whose node has this world transform
+ * (its local +Y axis); zero when the transform flattens that axis, which the build refuses. */
+rt_vec3 rt_scene_light_direction(const rt_affine *world);
 
 #endif

@@ -11,13 +11,10 @@ static rt_status fail(rt_build_error *err, rt_status status, const char *what, u
     return status;
 }
 
-static bool vec_is_finite(rt_vec3 v) { return rt_is_finite(v.x) && rt_is_finite(v.y) && rt_is_finite(v.z); }
-
-static bool affine_is_finite(const rt_affine *a)
+rt_vec3 rt_scene_light_direction(const rt_affine *world)
 {
-    for (int i = 0; i < 3; i++)
-        if (!vec_is_finite(rt_v3(a->linear.m[i][0], a->linear.m[i][1], a->linear.m[i][2]))) return false;
-    return vec_is_finite(a->translation);
+    /* A directional light shines from its node's local +Y axis. */
+    return rt_v3_normalize(rt_affine_vector(world, rt_v3(RT_ZERO, RT_ONE, RT_ZERO)));
 }
 
 static rt_status copy_materials(const rt_scene_desc *d, rt_arena *arena, rt_scene *s, rt_build_error *err)
@@ -44,7 +41,7 @@ static rt_status copy_materials(const rt_scene_desc *d, rt_arena *arena, rt_scen
         for (int c = 0; c < 4; c++) {
             if (ch[c]->texture != RT_NO_TEXTURE && ch[c]->texture >= d->texture_count)
                 return fail(err, RT_ERR_INVALID, "a material names a texture that does not exist", UINT32_MAX);
-            if (!vec_is_finite(ch[c]->color))
+            if (!rt_v3_is_finite(ch[c]->color))
                 return fail(err, RT_ERR_INVALID, "a material colour is not finite", UINT32_MAX);
         }
         if (!rt_is_finite(m->shininess) || !rt_is_finite(m->index_of_refraction) || m->index_of_refraction <= RT_ZERO)
@@ -64,7 +61,7 @@ static rt_status prepare_mesh(const rt_scene_desc *d, const rt_object_desc *o, u
     for (uint32_t t = 0; t < out->triangle_count * 3; t++)
         if (out->indices[t] >= out->vertex_count) return fail(err, RT_ERR_INVALID, "mesh index out of range", index);
     for (uint32_t v = 0; v < out->vertex_count; v++)
-        if (!vec_is_finite(out->positions[v])) return fail(err, RT_ERR_INVALID, "mesh vertex is not finite", index);
+        if (!rt_v3_is_finite(out->positions[v])) return fail(err, RT_ERR_INVALID, "mesh vertex is not finite", index);
     rt_status st = RT_OK;
     if (o->subdivision > 0) st = rt_mesh_subdivide(&d->meshes[o->mesh], o->subdivision, arena, out);
     if (st == RT_OK && !out->normals) {
@@ -90,7 +87,7 @@ static rt_status build_objects(const rt_scene_desc *d, rt_arena *arena, rt_scene
         rt_object *obj = &s->objects[i];
         if (o->material >= d->material_count)
             return fail(err, RT_ERR_INVALID, "object names a material that does not exist", i);
-        if (!affine_is_finite(&o->world)) return fail(err, RT_ERR_INVALID, "transform is not finite", i);
+        if (!rt_affine_is_finite(&o->world)) return fail(err, RT_ERR_INVALID, "transform is not finite", i);
         obj->kind = o->kind;
         obj->material = o->material;
         obj->source = o->source;
@@ -160,13 +157,12 @@ static rt_status build_lights(const rt_scene_desc *d, rt_arena *arena, rt_scene 
     for (uint32_t i = 0; i < d->light_count; i++) {
         const rt_light_desc *ld = &d->lights[i];
         rt_light *l = &s->lights[i];
-        if (!affine_is_finite(&ld->world) || !vec_is_finite(ld->color) || !vec_is_finite(ld->ambient) ||
+        if (!rt_affine_is_finite(&ld->world) || !rt_v3_is_finite(ld->color) || !rt_v3_is_finite(ld->ambient) ||
             !rt_is_finite(ld->atten_const) || !rt_is_finite(ld->atten_linear) || !rt_is_finite(ld->atten_quad))
             return fail(err, RT_ERR_INVALID, "a light has a value that is not finite", UINT32_MAX);
         l->kind = ld->kind;
         l->position = ld->world.translation;
-        /* A directional light shines from its node's local +Y axis. */
-        l->direction = rt_v3_normalize(rt_affine_vector(&ld->world, rt_v3(RT_ZERO, RT_ONE, RT_ZERO)));
+        l->direction = rt_scene_light_direction(&ld->world);
         if (ld->kind == RT_LIGHT_DIRECTIONAL && rt_v3_is_zero(l->direction))
             return fail(err, RT_ERR_INVALID, "a directional light has no direction (a scale of 0?)", UINT32_MAX);
         rt_vec3 half = rt_v3(RT_C(-0.5), RT_ZERO, RT_C(-0.5));
@@ -186,7 +182,7 @@ static rt_status build_lights(const rt_scene_desc *d, rt_arena *arena, rt_scene 
 
 static rt_status build_camera(const rt_camera_desc *c, rt_camera *cam, rt_build_error *err)
 {
-    if (!affine_is_finite(&c->world)) return fail(err, RT_ERR_INVALID, "camera transform is not finite", UINT32_MAX);
+    if (!rt_affine_is_finite(&c->world)) return fail(err, RT_ERR_INVALID, "camera transform is not finite", UINT32_MAX);
     if (c->width == 0 || c->height == 0) return fail(err, RT_ERR_INVALID, "image size is 0", UINT32_MAX);
     if (!rt_is_finite(c->fov_degrees) || !(c->fov_degrees > RT_ZERO) || !(c->fov_degrees < rt_from_int(180)))
         return fail(err, RT_ERR_INVALID, "camera FOV must be between 0 and 180 degrees", UINT32_MAX);
@@ -206,13 +202,14 @@ static rt_status build_camera(const rt_camera_desc *c, rt_camera *cam, rt_build_
     cam->trace = c->trace;
     if (cam->trace.max_depth > RT_MAX_RECURSION_DEPTH)
         return fail(err, RT_ERR_INVALID, "Maximum Recursion Depth is above 64", UINT32_MAX);
-    if (cam->trace.shadows > 2) cam->trace.shadows = 2;
     /* Choice indices above their range mean the last choice, as in the skeleton. */
-    if (cam->trace.samples_per_pixel_index > 7) cam->trace.samples_per_pixel_index = 7;
-    if (cam->trace.monte_carlo > 2) cam->trace.monte_carlo = 2;
-    if (cam->trace.sample_count_type > 2) cam->trace.sample_count_type = 2;
-    if (cam->trace.min_samples_index > 4) cam->trace.min_samples_index = 4;
-    if (cam->trace.max_samples_index > 6) cam->trace.max_samples_index = 6;
+    rt_trace_settings *t = &cam->trace;
+    if (t->shadows > RT_SHADOWS_LAST) t->shadows = RT_SHADOWS_LAST;
+    if (t->samples_per_pixel_index > RT_MAX_SPP_INDEX) t->samples_per_pixel_index = RT_MAX_SPP_INDEX;
+    if (t->monte_carlo > RT_MONTE_CARLO_LAST) t->monte_carlo = RT_MONTE_CARLO_LAST;
+    if (t->sample_count_type > RT_SAMPLES_LAST) t->sample_count_type = RT_SAMPLES_LAST;
+    if (t->min_samples_index > RT_MAX_MIN_SAMPLES_INDEX) t->min_samples_index = RT_MAX_MIN_SAMPLES_INDEX;
+    if (t->max_samples_index > RT_MAX_MAX_SAMPLES_INDEX) t->max_samples_index = RT_MAX_MAX_SAMPLES_INDEX;
     if (!rt_is_finite(cam->trace.focus_distance) || !rt_is_finite(cam->trace.aperture_size) ||
         !rt_is_finite(cam->ortho_width) || !rt_is_finite(cam->trace.difference_threshold) ||
         !rt_is_finite(cam->trace.std_error_threshold))

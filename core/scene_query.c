@@ -1,84 +1,10 @@
-/* Scene queries: nearest and any hit along a ray, with the tie rule of scene_query.h. */
+/* Scene queries: nearest and any hit along a ray, with the tie rule of scene_query.h: the
+ * float walk (bvh_float.h) for the rays it takes, the general walk here for the others. */
 #include "scene_query.h"
 #include "bvh_slab.h"
 
-static bool quadric_intersect(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs, rt_prim_hit *hit);
-
-/* Inline in the BVH's leaf loop, where a triangle test is most of the work; kx, ky, kz
- * are rs's axis permutation (see rt_intersect_triangle_axes). */
-__attribute__((always_inline)) static inline bool prim_intersect(const rt_scene *scene, uint32_t prim,
-                                                                 const rt_ray_setup *rs, rt_prim_hit *hit, int kx,
-                                                                 int ky, int kz)
-{
-    if (prim >= scene->triangle_count) return quadric_intersect(scene, prim, rs, hit);
-    const rt_triangle *tri = &scene->triangles[prim];
-    return rt_intersect_triangle_axes(rs, scene->positions[tri->v[0]], scene->positions[tri->v[1]],
-                                      scene->positions[tri->v[2]], hit, kx, ky, kz);
-}
-
-bool rt_scene_prim_intersect(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs, rt_prim_hit *hit)
-{
-    return prim_intersect(scene, prim, rs, hit, rs->kx, rs->ky, rs->kz);
-}
-
-static bool quadric_intersect(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs, rt_prim_hit *hit)
-{
-    const rt_object *obj = &scene->objects[scene->quadric_objects[prim - scene->triangle_count]];
-    rt_vec3 o = rt_affine_point(&obj->to_object, rs->ray.origin);
-    rt_vec3 d = rt_affine_vector(&obj->to_object, rs->ray.direction);
-    /* Solve with a unit object-space direction and scale t back: the short direction of a
-     * scaled-up object would leave Q32.32 only a few bits in d.d. */
-    rt_real len = rt_v3_length(d);
-    if (!(len > RT_ZERO)) return false;
-    rt_vec3 unit = rt_v3_scale(d, rt_div(RT_ONE, len));
-    rt_real t_min = rt_mul(rs->ray.t_min, len), t_max = rt_mul(rs->ray.t_max, len);
-    bool found = obj->kind == RT_SHAPE_SPHERE ? rt_intersect_sphere(o, unit, t_min, t_max, hit)
-                                              : rt_intersect_cylinder(o, unit, t_min, t_max, hit);
-    if (!found) return false;
-    hit->t = rt_div(hit->t, len);
-    return hit->t > rs->ray.t_min && hit->t < rs->ray.t_max;
-}
-
-/* Keeps prim's hit in *best if it is nearer, or as near and a lower reference. */
-__attribute__((always_inline)) static inline void consider(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs,
-                                                           rt_scene_hit *best, bool *found, int kx, int ky, int kz)
-{
-    rt_prim_hit h;
-    if (!prim_intersect(scene, prim, rs, &h, kx, ky, kz)) return;
-    if (*found && (h.t > best->hit.t || (h.t == best->hit.t && prim > best->prim))) return;
-    best->hit = h;
-    best->prim = prim;
-    *found = true;
-}
-
-__attribute__((always_inline)) static inline bool leaf_loop(const rt_scene *scene, uint32_t first, uint32_t count,
-                                                            const rt_ray_setup *rs, bool any, rt_scene_hit *best,
-                                                            bool *found, int kx, int ky, int kz)
-{
-    const uint32_t *refs = scene->bvh.prim_refs;
-    for (uint32_t i = first; i < first + count; i++) {
-        consider(scene, refs[i], rs, best, found, kx, ky, kz);
-        if (any && *found) break;
-    }
-    return *found;
-}
-
-/* The references prim_refs[first .. first + count), out of line so that the traversal
- * loop keeps its registers, with one copy of the loop per axis permutation; with `any`,
- * stops at the first hit. Returns *found. */
-__attribute__((noinline)) static bool visit_leaf(const rt_scene *scene, uint32_t first, uint32_t count,
-                                                 const rt_ray_setup *rs, bool any, rt_scene_hit *best, bool *found)
-{
-    bool swapped = rs->kx != (rs->kz + 1) % 3; /* see rt_intersect_prepare */
-    switch (rs->kz * 2 + swapped) {
-    case 0: return leaf_loop(scene, first, count, rs, any, best, found, 1, 2, 0);
-    case 1: return leaf_loop(scene, first, count, rs, any, best, found, 2, 1, 0);
-    case 2: return leaf_loop(scene, first, count, rs, any, best, found, 2, 0, 1);
-    case 3: return leaf_loop(scene, first, count, rs, any, best, found, 0, 2, 1);
-    case 4: return leaf_loop(scene, first, count, rs, any, best, found, 0, 1, 2);
-    default: return leaf_loop(scene, first, count, rs, any, best, found, 1, 0, 2);
-    }
-}
+#include "bvh_float.h"
+#include "bvh_leaf.h"
 
 static bool nearest_brute(const rt_scene *scene, const rt_ray_setup *rs, rt_scene_hit *out)
 {
@@ -176,15 +102,32 @@ static bool nearest_bvh(const rt_scene *scene, const rt_ray_setup *rs, bool any,
     return found;
 }
 
+bool rt_scene_prim_intersect(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs, rt_prim_hit *hit)
+{
+    return prim_intersect(scene, prim, rs, hit, rs->kx, rs->ky, rs->kz);
+}
+
+/* The BVH walk for the ray: the float one where it can take the ray. */
+static bool walk(const rt_scene *scene, const rt_ray_setup *rs, bool any, rt_scene_hit *out)
+{
+#if FLOAT_WALK
+    float_slab f;
+    if (scene->bvh.kernel != RT_KERNEL_PORTABLE && scene->prim_count > 0 &&
+        float_slab_prepare(rs, scene->bvh.extent, &f))
+        return float_walk(scene, rs, &f, any, out);
+#endif
+    return nearest_bvh(scene, rs, any, out);
+}
+
 bool rt_scene_nearest(const rt_scene *scene, const rt_ray_setup *rs, bool use_bvh, rt_scene_hit *out)
 {
-    return use_bvh ? nearest_bvh(scene, rs, false, out) : nearest_brute(scene, rs, out);
+    return use_bvh ? walk(scene, rs, false, out) : nearest_brute(scene, rs, out);
 }
 
 bool rt_scene_any(const rt_scene *scene, const rt_ray_setup *rs, bool use_bvh)
 {
     rt_scene_hit first;
-    if (use_bvh) return nearest_bvh(scene, rs, true, &first);
+    if (use_bvh) return walk(scene, rs, true, &first);
     rt_prim_hit h;
     for (uint32_t p = 0; p < scene->prim_count; p++)
         if (rt_scene_prim_intersect(scene, p, rs, &h)) return true;

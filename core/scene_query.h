@@ -19,6 +19,17 @@ bool rt_scene_prim_intersect(const rt_scene *scene, uint32_t prim, const rt_ray_
 bool rt_scene_nearest(const rt_scene *scene, const rt_ray_setup *rs, bool use_bvh, rt_scene_hit *out);
 /* Whether any primitive is hit in (t_min, t_max): true exactly when rt_scene_nearest finds a hit. */
 bool rt_scene_any(const rt_scene *scene, const rt_ray_setup *rs, bool use_bvh);
+/* Rays traced together in packets by the stream queries below. */
+#define RT_PACKET 8
+
+/* The same queries for n rays at once, through the BVH: found[i] and out[i] are what
+ * rt_scene_nearest(scene, &rs[i], true, &out[i]) and rt_scene_any(scene, &rs[i], true)
+ * give, bit for bit. Rays that share a direction octant and axis permutation (a tile's
+ * camera rays, their shadow rays) are traced RT_PACKET at a time where the kernel has
+ * packets. */
+void rt_scene_nearest_stream(const rt_scene *scene, const rt_ray_setup *rs, uint32_t n, rt_scene_hit *out, bool *found);
+void rt_scene_any_stream(const rt_scene *scene, const rt_ray_setup *rs, uint32_t n, bool *found);
+
 /* The mesh object a triangle (an index into rt_scene.triangles) belongs to. */
 uint32_t rt_scene_triangle_object(const rt_scene *scene, uint32_t triangle);
 

@@ -18,7 +18,9 @@ bool rt_shading_hit(const rt_tracer *tr, const rt_ray *ray, rt_ray_kind kind, ui
     p->ray = rt_raylog_begin(tr->log, kind, parent, depth, ray);
     p->depth = depth;
     rt_scene_hit hit;
-    if (!rt_shading_nearest(tr, ray, &hit)) return false;
+    const rt_primed *pr = depth == 0 && kind == RT_RAY_CAMERA ? tr->primed : NULL;
+    if (pr ? !pr->found : !rt_shading_nearest(tr, ray, &hit)) return false;
+    if (pr) hit = pr->hit;
     rt_surface s = rt_surface_at(scene, ray, &hit);
     const rt_material *mat = &scene->materials[s.material];
     p->point = s.point;
@@ -52,13 +54,19 @@ static rt_vec3 shadow_attenuation(const rt_tracer *tr, rt_vec3 point, rt_vec3 to
 {
     const rt_scene *scene = tr->scene;
     rt_vec3 atten = rt_v3(RT_ONE, RT_ONE, RT_ONE);
-    uint32_t mode = scene->camera.trace.shadows;
-    if (mode == 0) return atten;
+    rt_shadow_mode mode = scene->camera.trace.shadows;
+    if (mode == RT_SHADOWS_NONE) return atten;
+    /* The first query, when the packets made it (see rt_primed). */
+    uint8_t primed = depth == 0 && tr->primed && light < RT_PRIMED_LIGHTS ? tr->primed->shadow[light] : 0;
     /* Opaque shadows need only whether anything blocks (any hit), unless the debugger
      * records which hit did. */
-    if (mode == 1 && !tr->log) {
-        rt_ray_setup rs = rt_intersect_prepare(rt_ray_make(point, to_light, distance));
-        return rt_scene_any(scene, &rs, tr->use_bvh) ? rt_v3(RT_ZERO, RT_ZERO, RT_ZERO) : atten;
+    if (mode == RT_SHADOWS_OPAQUE && !tr->log) {
+        bool blocked = primed == 2;
+        if (!primed) {
+            rt_ray_setup rs = rt_intersect_prepare(rt_ray_make(point, to_light, distance));
+            blocked = rt_scene_any(scene, &rs, tr->use_bvh);
+        }
+        return blocked ? rt_v3(RT_ZERO, RT_ZERO, RT_ZERO) : atten;
     }
     rt_vec3 origin = point;
     rt_real remaining = distance;
@@ -70,13 +78,16 @@ static rt_vec3 shadow_attenuation(const rt_tracer *tr, rt_vec3 point, rt_vec3 to
         rt_ray_record *rec = rt_raylog_ray(tr->log, id);
         if (rec) rec->light = light;
         rt_scene_hit hit;
-        if (!rt_shading_nearest(tr, &ray, &hit)) {
+        bool known = crossing == 0 && primed;
+        if (known ? primed == 1 : !rt_shading_nearest(tr, &ray, &hit)) {
             if (rec) rec->color = atten;
             return atten;
         }
+        if (known) hit = tr->primed->shadow_hit[light];
         rt_surface s = rt_surface_at(scene, &ray, &hit);
-        rt_vec3 kt = mode == 1 ? rt_v3(RT_ZERO, RT_ZERO, RT_ZERO)
-                               : rt_surface_channel(scene, &scene->materials[s.material].transmittance, s.uv);
+        rt_vec3 kt = mode == RT_SHADOWS_OPAQUE
+                         ? rt_v3(RT_ZERO, RT_ZERO, RT_ZERO)
+                         : rt_surface_channel(scene, &scene->materials[s.material].transmittance, s.uv);
         atten = rt_v3_mul(atten, kt);
         if (rec) {
             rec->hit = true;
@@ -100,6 +111,36 @@ static rt_real distance_attenuation(const rt_light *l, rt_real r)
     return rt_div(RT_ONE, denom);
 }
 
+/* The unit vector from p towards light l (placed at `position` unless directional) and
+ * its distance; false when p is at the light. */
+static bool towards_light(const rt_light *l, const rt_shading_point *p, rt_vec3 position, rt_vec3 *to_light,
+                          rt_real *distance)
+{
+    if (l->kind == RT_LIGHT_DIRECTIONAL) {
+        *to_light = l->direction;
+        *distance = RT_REAL_MAX;
+        return true;
+    }
+    rt_vec3 delta = rt_v3_sub(position, p->point);
+    *distance = rt_v3_length(delta);
+    if (*distance == RT_ZERO) return false;
+    *to_light = rt_v3_scale(delta, rt_div(RT_ONE, *distance));
+    return true;
+}
+
+bool rt_shading_shadow_ray(const rt_tracer *tr, uint32_t index, const rt_shading_point *p, rt_vec3 position,
+                           rt_ray *out)
+{
+    rt_vec3 to_light;
+    rt_real distance;
+    if (tr->scene->camera.trace.shadows == RT_SHADOWS_NONE ||
+        !towards_light(&tr->scene->lights[index], p, position, &to_light, &distance))
+        return false;
+    if (!(rt_v3_dot(p->n, to_light) > RT_ZERO)) return false;
+    *out = rt_ray_make(p->point, to_light, distance);
+    return true;
+}
+
 rt_vec3 rt_shading_light(const rt_tracer *tr, uint32_t index, const rt_shading_point *p, rt_vec3 position,
                          bool lambertian)
 {
@@ -110,17 +151,11 @@ rt_vec3 rt_shading_light(const rt_tracer *tr, uint32_t index, const rt_shading_p
     rec.contribution = rec.ambient;
     rt_vec3 to_light;
     rt_real distance;
-    if (l->kind == RT_LIGHT_DIRECTIONAL) {
-        to_light = l->direction;
-        distance = RT_REAL_MAX;
-    } else {
-        rt_vec3 delta = rt_v3_sub(position, p->point);
-        distance = rt_v3_length(delta);
-        if (distance == RT_ZERO) {
-            rt_raylog_light(tr->log, &rec);
-            return rec.contribution;
-        }
-        to_light = rt_v3_scale(delta, rt_div(RT_ONE, distance));
+    if (!towards_light(l, p, position, &to_light, &distance)) {
+        rt_raylog_light(tr->log, &rec);
+        return rec.contribution;
+    }
+    if (l->kind != RT_LIGHT_DIRECTIONAL) {
         rec.distance_attenuation = distance_attenuation(l, distance);
         if (lambertian) rec.light_cosine = rt_area_light_cosine(l, to_light);
     }

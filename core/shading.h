@@ -30,6 +30,11 @@ bool rt_shading_hit(const rt_tracer *tr, const rt_ray *ray, rt_ray_kind kind, ui
 rt_vec3 rt_shading_light(const rt_tracer *tr, uint32_t index, const rt_shading_point *p, rt_vec3 position,
                          bool lambertian);
 
+/* The first shadow ray rt_shading_light traces towards light `index` as if it sat at
+ * `position` (lambertian = false, as Whitted tracing calls it), or false when it traces none. */
+bool rt_shading_shadow_ray(const rt_tracer *tr, uint32_t index, const rt_shading_point *p, rt_vec3 position,
+                           rt_ray *out);
+
 /* The mirror direction of the view vector about the shading normal. */
 rt_vec3 rt_shading_mirror(const rt_shading_point *p);
 /* The refracted direction into (or out of) the surface; false on total internal reflection. */

@@ -101,6 +101,13 @@ static rt_mat3 rotation_about(int axis, rt_real degrees)
     return r;
 }
 
+bool rt_affine_is_finite(const rt_affine *a)
+{
+    for (int i = 0; i < 3; i++)
+        if (!rt_v3_is_finite(rt_v3(a->linear.m[i][0], a->linear.m[i][1], a->linear.m[i][2]))) return false;
+    return rt_v3_is_finite(a->translation);
+}
+
 rt_affine rt_affine_trs(rt_vec3 translation, rt_vec3 rotation_degrees, rt_vec3 scale)
 {
     rt_mat3 rx = rotation_about(0, rotation_degrees.x);

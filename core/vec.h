@@ -95,6 +95,8 @@ static inline rt_vec3 rt_v3_normalize(rt_vec3 a)
     return len > RT_ZERO ? rt_v3_scale(b, rt_div(RT_ONE, len)) : a;
 }
 static inline rt_real rt_v3_get(rt_vec3 a, int axis) { return axis == 0 ? a.x : axis == 1 ? a.y : a.z; }
+static inline rt_vec3 rt_v3_div(rt_vec3 a, rt_real d) { return rt_v3(rt_div(a.x, d), rt_div(a.y, d), rt_div(a.z, d)); }
+static inline bool rt_v3_is_finite(rt_vec3 a) { return rt_is_finite(a.x) && rt_is_finite(a.y) && rt_is_finite(a.z); }
 static inline bool rt_v3_is_zero(rt_vec3 a) { return a.x == RT_ZERO && a.y == RT_ZERO && a.z == RT_ZERO; }
 static inline rt_vec3 rt_v3_min(rt_vec3 a, rt_vec3 b)
 {
@@ -125,6 +127,8 @@ rt_affine rt_affine_identity(void);
 rt_affine rt_affine_mul(const rt_affine *a, const rt_affine *b);
 /* Inverse of a; false (and *out untouched) when it is singular or not finite. */
 bool rt_affine_inverse(const rt_affine *a, rt_affine *out);
+/* Every entry finite (no overflow to infinity, no NaN). */
+bool rt_affine_is_finite(const rt_affine *a);
 /* The format's node transform: T(translation) * Rx * Ry * Rz * S(scale), angles in degrees. */
 rt_affine rt_affine_trs(rt_vec3 translation, rt_vec3 rotation_degrees, rt_vec3 scale);
 

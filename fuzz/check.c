@@ -1,5 +1,6 @@
 /* Reporting of broken invariants; see check.h. */
 #include "check.h"
+#include "invariant.h"
 
 #include <stdarg.h>
 #include <stdio.h>
@@ -14,4 +15,10 @@ void fz_fail(const char *file, int line, const char *cond, const char *fmt, ...)
     va_end(ap);
     fputc('\n', stderr);
     abort();
+}
+
+/* The core is built with RT_ASSERTS here: a broken invariant is a finding. */
+void rt_invariant_failed(const char *file, int line, const char *condition)
+{
+    fz_fail(file, line, condition, "core invariant");
 }

@@ -1,6 +1,8 @@
 /* Scenes and rays for the intersector targets; see fixture.h. */
 #include "fixture.h"
 
+#include <math.h>
+
 #include "check.h"
 #include "oracle.h"
 
@@ -44,12 +46,42 @@ void fz_scene_one(rt_scene *out, rt_shape_kind kind, const rt_mesh_desc *mesh, r
     FZ_CHECK(st == RT_OK, "rt_scene_build refused a valid one-object scene: %s", err.what);
 }
 
+void fz_object_ray(const rt_scene *scene, const fz_trs *trs, rt_ray ray, fz_v3l *o, fz_v3l *d)
+{
+    const rt_affine *to_object = &scene->objects[0].to_object;
+    fz_v3l want_o = fz_trs_point_to_object(trs, ray.origin), want_d = fz_trs_vector_to_object(trs, ray.direction);
+    fz_v3l got_o = fz_l(rt_affine_point(to_object, ray.origin)),
+           got_d = fz_l(rt_affine_vector(to_object, ray.direction));
+    /* Rounding of the forward matrix grows by the inverse's norm squared (1/smallest scale);
+     * Q32.32's inverse carries a few absolute lsb per entry (measured up to 8 per unit of reach). */
+    fz_v3l s = fz_l(trs->scale);
+    long double k = fmaxl(1, 1 / fminl(fminl(s.x, s.y), s.z));
+    long double reach = fz_l_len(fz_l(ray.origin)) + fz_l_len(fz_l(trs->translation));
+    long double unit = FZ_ABS > 0 ? 256 * FZ_ABS * k * k : 1e3L * FZ_EPS * k;
+    long double off_o = fz_l_len(fz_l_sub(got_o, want_o)), off_d = fz_l_len(fz_l_sub(got_d, want_d));
+    FZ_CHECK(off_o <= unit * (reach + 1) && off_d <= unit * (fz_l_len(fz_l(ray.direction)) + 1),
+             "to_object is %.3Lg (point) and %.3Lg (direction) off the description's inverse (k %.3Lg, reach %.3Lg)",
+             off_o, off_d, k, reach);
+    *o = FZ_ABS > 0 ? got_o : want_o;
+    *d = FZ_ABS > 0 ? got_d : want_d;
+}
+
+rt_affine fz_transform_trs(fz_bytes *in, fz_trs *described)
+{
+    rt_vec3 zero = rt_v3(RT_ZERO, RT_ZERO, RT_ZERO);
+    *described = (fz_trs){zero, zero, rt_v3(RT_ONE, RT_ONE, RT_ONE)};
+    if (fz_u8(in) % 4 == 0) return rt_affine_identity();
+    described->translation = fz_vec_range(in, -8, 8);
+    described->rotation_degrees = fz_vec_range(in, -180, 180);
+    double sx = fz_pow2(in, -4, 4), sy = fz_pow2(in, -4, 4), sz = fz_pow2(in, -4, 4);
+    described->scale = rt_v3(rt_from_double(sx), rt_from_double(sy), rt_from_double(sz));
+    return rt_affine_trs(described->translation, described->rotation_degrees, described->scale);
+}
+
 rt_affine fz_transform(fz_bytes *in)
 {
-    if (fz_u8(in) % 4 == 0) return rt_affine_identity();
-    rt_vec3 t = fz_vec_range(in, -8, 8), r = fz_vec_range(in, -180, 180);
-    double sx = fz_pow2(in, -4, 4), sy = fz_pow2(in, -4, 4), sz = fz_pow2(in, -4, 4);
-    return rt_affine_trs(t, r, rt_v3(rt_from_double(sx), rt_from_double(sy), rt_from_double(sz)));
+    fz_trs unused;
+    return fz_transform_trs(in, &unused);
 }
 
 void fz_ray_interval(fz_bytes *in, rt_ray *ray)

@@ -10,7 +10,8 @@
 #include "oracle.h"
 #include "surface.h"
 
-static void check_hit(const rt_scene *scene, const rt_ray *ray, const rt_scene_hit *hit, long double lo, long double hi)
+static void check_hit(const rt_scene *scene, const fz_trs *trs, const rt_ray *ray, const rt_scene_hit *hit,
+                      long double lo, long double hi)
 {
     fz_check_t(hit->hit.t, ray->t_min, ray->t_max);
     FZ_CHECK(hit->hit.b1 >= RT_ZERO && hit->hit.b2 >= RT_ZERO &&
@@ -27,14 +28,13 @@ static void check_hit(const rt_scene *scene, const rt_ray *ray, const rt_scene_h
     fz_check_unit(s.normal, "cube normal");
     fz_check_unit(s.geometric_normal, "cube geometric normal");
     /* The Cube's normals face out of the box; the flat faces make both normals agree. */
-    fz_v3l out = fz_l_sub(fz_l(s.point), fz_l(scene->objects[0].to_world.translation));
+    fz_v3l out = fz_l_sub(fz_l(s.point), fz_l(trs->translation));
     FZ_CHECK(fz_l_dot(fz_l(s.normal), out) > 0, "cube normal points inwards");
     FZ_CHECK(rt_v3_dot(s.normal, s.geometric_normal) > RT_ZERO, "shading and geometric normals on opposite sides");
 }
 
-static void check_ray(const rt_scene *scene, rt_ray ray)
+static void check_ray(const rt_scene *scene, const fz_trs *trs, rt_ray ray)
 {
-    const rt_object *obj = &scene->objects[0];
     rt_ray_setup rs = rt_intersect_prepare(ray);
     rt_scene_hit hit = {0}, brute = {0};
     bool found = rt_scene_nearest(scene, &rs, true, &hit), brute_found = rt_scene_nearest(scene, &rs, false, &brute);
@@ -45,8 +45,9 @@ static void check_ray(const rt_scene *scene, rt_ray ray)
     FZ_CHECK(!found || (hit.prim == brute.prim && hit.hit.t == brute.hit.t), "BVH and brute force disagree on the hit");
     /* Slab tests in object space against the box grown and shrunk by the margin: the
      * surface's first crossing lies between the two boxes' (both are convex). */
-    fz_v3l o = fz_l(rt_affine_point(&obj->to_object, ray.origin));
-    fz_v3l d = fz_l(rt_affine_vector(&obj->to_object, ray.direction));
+    /* The object-space ray from the scene's description (fz_object_ray). */
+    fz_v3l o, d;
+    fz_object_ray(scene, trs, ray, &o, &d);
     long double m = FZ_MARGIN * (1 + fz_l_len(o)), tol = FZ_TOL_T * (1 + fz_l_len(o)) / fz_l_len(d);
     long double lo = rt_to_double(ray.t_min), hi = rt_to_double(ray.t_max);
     long double grow_in, grow_out, shrink_in, shrink_out;
@@ -62,11 +63,11 @@ static void check_ray(const rt_scene *scene, rt_ray ray)
     if (entry || exit) FZ_CHECK(found, "missed the box: it lies in [%.17Lg, %.17Lg] along the ray", grow_in, grow_out);
     if (!found) return;
     if (entry)
-        check_hit(scene, &ray, &hit, grow_in, shrink_in);
+        check_hit(scene, trs, &ray, &hit, grow_in, shrink_in);
     else if (exit)
-        check_hit(scene, &ray, &hit, shrink_out, grow_out);
+        check_hit(scene, trs, &ray, &hit, shrink_out, grow_out);
     else
-        check_hit(scene, &ray, &hit, grow_in, grow_out);
+        check_hit(scene, trs, &ray, &hit, grow_in, grow_out);
 }
 
 /* A point on the cube's boundary in object space, exact: on one of its 12 edges, 8
@@ -87,7 +88,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     fz_bytes in = fz_bytes_of(data, size);
     rt_mesh_desc cube = rt_builtin_mesh_cube();
     rt_scene scene;
-    fz_scene_one(&scene, RT_SHAPE_MESH, &cube, fz_transform(&in));
+    fz_trs trs;
+    fz_scene_one(&scene, RT_SHAPE_MESH, &cube, fz_transform_trs(&in, &trs));
     const rt_affine *world = &scene.objects[0].to_world;
     while (in.pos < in.size) {
         uint8_t kind = fz_u8(&in) % 4;
@@ -106,7 +108,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             ray.origin = rt_affine_point(world, o);
             ray.direction = rt_v3_normalize(rt_v3_sub(rt_affine_point(world, q), ray.origin));
         }
-        check_ray(&scene, ray);
+        check_ray(&scene, &trs, ray);
     }
     return 0;
 }

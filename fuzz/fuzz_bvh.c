@@ -1,9 +1,10 @@
 /* libFuzzer target: BVH build and traversal (core/bvh.c) against testing every
  * primitive. For a soup of triangles, spheres and cylinders from the bytes,
  * rt_scene_nearest with and without the BVH must agree on hit or miss, on the
- * primitive (ties go to the lower reference) and on t, bit for bit; and a build
- * under a plan that splits the top of the tree level by level and bins in small
- * chunks must give the same tree, byte for byte. */
+ * primitive (ties go to the lower reference) and on t, bit for bit; the stream queries
+ * (packets) under every kernel the CPU runs must give each of those rays what the
+ * one-ray queries give it; and a build under a plan that splits the top of the tree
+ * level by level and bins in small chunks must give the same tree, byte for byte. */
 #include <math.h>
 #include <string.h>
 
@@ -55,6 +56,13 @@ static void check_tree(const rt_scene *s)
         for (int c = 0; c < RT_BVH_WIDTH; c++) {
             if (n->count[c] == RT_BVH_NO_CHILD) {
                 FZ_CHECK(c == RT_BVH_WIDTH - 1 || n->count[c + 1] == RT_BVH_NO_CHILD, "node %u skips slot %d", i, c);
+                /* The walks test unused slots like the others: their box must hold nothing. */
+                rt_aabb empty = rt_bvh_child_box(bvh, n, c);
+                FZ_CHECK(empty.lo.x == rt_bound_value(rt_bound_below(RT_REAL_MAX, bvh->grid), bvh->grid) &&
+                             empty.hi.x == rt_bound_value(rt_bound_above(rt_neg(RT_REAL_MAX), bvh->grid), bvh->grid) &&
+                             empty.lo.y == empty.lo.x && empty.lo.z == empty.lo.x && empty.hi.y == empty.hi.x &&
+                             empty.hi.z == empty.hi.x,
+                         "node %u: unused slot %d has a box", i, c);
                 continue;
             }
             rt_aabb box = rt_bvh_child_box(bvh, n, c);
@@ -121,6 +129,55 @@ static void check_ray(const rt_scene *s, rt_ray ray)
     }
 }
 
+/* The kernels this CPU runs (the core's own list, and for AVX2 the CPU's word). */
+static bool kernel_runs(rt_kernel k)
+{
+#if defined(__x86_64__) || defined(__i386__)
+    if (k == RT_KERNEL_AVX2 && !__builtin_cpu_supports("avx2")) return false;
+#endif
+    return rt_bvh_kernel_compiled(k);
+}
+
+#define MAX_STREAM 256
+
+/* Under every kernel that runs here, the stream queries (packets where the kernel has
+ * them) give each ray exactly what the one-ray queries give it, but where either hits a
+ * triangle edge-on (see check_ray). */
+static void check_streams(const rt_scene *s, const rt_ray *rays, uint32_t n)
+{
+    static rt_ray_setup rs[MAX_STREAM];
+    static rt_scene_hit one[MAX_STREAM], many[MAX_STREAM];
+    static bool one_found[MAX_STREAM], many_found[MAX_STREAM], one_any[MAX_STREAM], many_any[MAX_STREAM];
+    for (uint32_t i = 0; i < n; i++) {
+        rs[i] = rt_intersect_prepare(rays[i]);
+        one_found[i] = rt_scene_nearest(s, &rs[i], true, &one[i]);
+        one_any[i] = rt_scene_any(s, &rs[i], true);
+    }
+    for (rt_kernel k = RT_KERNEL_PORTABLE; k <= RT_KERNEL_AVX2; k++) {
+        if (!kernel_runs(k)) continue;
+        rt_scene copy = *s;
+        FZ_CHECK(rt_bvh_set_kernel(&copy.bvh, k), "kernel %d refused", (int)k);
+        memset(many, 0, sizeof many);
+        rt_scene_nearest_stream(&copy, rs, n, many, many_found);
+        rt_scene_any_stream(&copy, rs, n, many_any);
+        for (uint32_t i = 0; i < n; i++) {
+            if ((one_found[i] && fz_grazing(s, one[i].prim, &rays[i])) ||
+                (many_found[i] && fz_grazing(s, many[i].prim, &rays[i])))
+                continue;
+            FZ_CHECK(one_found[i] == many_found[i] && one_any[i] == many_any[i],
+                     "kernel %d, ray %u: stream %s/%s, one ray %s/%s", (int)k, i, many_found[i] ? "hit" : "miss",
+                     many_any[i] ? "hit" : "miss", one_found[i] ? "hit" : "miss", one_any[i] ? "hit" : "miss");
+            if (!one_found[i]) continue;
+            const rt_prim_hit *a = &one[i].hit, *b = &many[i].hit;
+            FZ_CHECK(one[i].prim == many[i].prim && !memcmp(&a->t, &b->t, sizeof a->t) &&
+                         !memcmp(&a->b1, &b->b1, sizeof a->b1) && !memcmp(&a->b2, &b->b2, sizeof a->b2) &&
+                         a->part == b->part,
+                     "kernel %d, ray %u: stream hits primitive %u at t = %.17g, one ray %u at t = %.17g", (int)k, i,
+                     many[i].prim, rt_to_double(many[i].hit.t), one[i].prim, rt_to_double(one[i].hit.t));
+        }
+    }
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     fz_bytes in = fz_bytes_of(data, size);
@@ -179,6 +236,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     check_tree(&s);
     /* The plan comes from the layout byte's unused bits, so the seeds keep their rays. */
     check_plan(&s, (rt_bvh_plan){1 + (layout >> 1) % 8, 1 + (layout >> 4)});
+    static rt_ray rays[MAX_STREAM];
+    uint32_t n_rays = 0;
     while (in.pos < in.size) {
         uint8_t kind = fz_u8(&in) % 4;
         rt_vec3 target = kind == 0 || n_tri == 0 ? point(&in, mode, range) : s.positions[fz_below(&in, s.vertex_count)];
@@ -186,6 +245,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         rt_ray ray = kind == 2 ? fz_ray_axis(&in, target) : fz_ray_through(&in, target);
         ray.origin = rt_v3_madd(target, ray.direction, rt_from_double(-range * fz_pow2(&in, -3, 3)));
         check_ray(&s, ray);
+        if (n_rays < MAX_STREAM) rays[n_rays++] = ray;
     }
+    check_streams(&s, rays, n_rays);
     return 0;
 }

@@ -66,15 +66,14 @@ static int cap_crossings(fz_v3l o, fz_v3l d, long double s, fz_crossing *c)
     return n;
 }
 
-static void check_ray(const rt_scene *scene, rt_ray ray)
+static void check_ray(const rt_scene *scene, const fz_trs *trs, rt_ray ray)
 {
-    const rt_object *obj = &scene->objects[0];
     rt_ray_setup rs = rt_intersect_prepare(ray);
     rt_scene_hit hit = {0};
     bool found = rt_scene_nearest(scene, &rs, true, &hit);
-    /* The object-space ray exactly as rt_scene_prim_intersect computes it. */
-    fz_v3l o = fz_l(rt_affine_point(&obj->to_object, ray.origin));
-    fz_v3l d = fz_l(rt_affine_vector(&obj->to_object, ray.direction));
+    /* The object-space ray from the scene's description (fz_object_ray). */
+    fz_v3l o, d;
+    fz_object_ray(scene, trs, ray, &o, &d);
     long double s = fz_l_len(o) + 0.75L;
     fz_crossing c[4];
     int n = side_crossings(o, d, s, c);
@@ -93,7 +92,7 @@ static void check_ray(const rt_scene *scene, rt_ray ray)
     rt_surface surf = rt_surface_at(scene, &ray, &hit);
     fz_check_unit(surf.normal, "cylinder normal");
     /* Outward: the cylinder is convex and contains its centre. */
-    fz_v3l out = fz_l_sub(fz_l(surf.point), fz_l(obj->to_world.translation));
+    fz_v3l out = fz_l_sub(fz_l(surf.point), fz_l(trs->translation));
     FZ_CHECK(fz_l_dot(fz_l(surf.normal), out) > 0, "cylinder normal points inwards");
 }
 
@@ -119,7 +118,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         return 0;
     }
     rt_scene scene;
-    fz_scene_one(&scene, RT_SHAPE_CYLINDER, NULL, fz_transform(&in));
+    fz_trs trs;
+    fz_scene_one(&scene, RT_SHAPE_CYLINDER, NULL, fz_transform_trs(&in, &trs));
     const rt_affine *world = &scene.objects[0].to_world;
     while (in.pos < in.size) {
         uint8_t kind = fz_u8(&in);
@@ -130,7 +130,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             ray = fz_ray_through(&in, rt_affine_point(world, boundary_point(&in)));
         else
             ray = fz_ray_through(&in, rt_affine_point(world, fz_vec_range(&in, -0.3, 0.3)));
-        check_ray(&scene, ray);
+        check_ray(&scene, &trs, ray);
     }
     return 0;
 }

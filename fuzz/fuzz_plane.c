@@ -9,9 +9,8 @@
 #include "oracle.h"
 #include "surface.h"
 
-static void check_ray(const rt_scene *scene, rt_ray ray)
+static void check_ray(const rt_scene *scene, const fz_trs *trs, rt_ray ray)
 {
-    const rt_object *obj = &scene->objects[0];
     rt_ray_setup rs = rt_intersect_prepare(ray);
     rt_scene_hit hit = {0}, brute = {0};
     bool found = rt_scene_nearest(scene, &rs, true, &hit), brute_found = rt_scene_nearest(scene, &rs, false, &brute);
@@ -35,8 +34,9 @@ static void check_ray(const rt_scene *scene, rt_ray ray)
     const rt_vec3 *p = scene->positions;
     fz_plane_crossing x;
     if (!fz_triangle_crossing(p[0], p[1], p[2], ray.origin, ray.direction, &x)) return;
-    fz_v3l o = fz_l(rt_affine_point(&obj->to_object, ray.origin));
-    fz_v3l d = fz_l(rt_affine_vector(&obj->to_object, ray.direction));
+    /* The object-space ray from the scene's description (fz_object_ray). */
+    fz_v3l o, d;
+    fz_object_ray(scene, trs, ray, &o, &d);
     long double t = -o.z / d.z, margin = 2 * x.slack + FZ_MARGIN * (1 + fz_l_len(o));
     fz_v3l q = fz_l_along(o, d, t);
     long double edge = fmaxl(fabsl(q.x), fabsl(q.y));
@@ -49,7 +49,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     fz_bytes in = fz_bytes_of(data, size);
     rt_mesh_desc square = rt_builtin_mesh_square();
     rt_scene scene;
-    fz_scene_one(&scene, RT_SHAPE_MESH, &square, fz_transform(&in));
+    fz_trs trs;
+    fz_scene_one(&scene, RT_SHAPE_MESH, &square, fz_transform_trs(&in, &trs));
     const rt_affine *world = &scene.objects[0].to_world;
     while (in.pos < in.size) {
         uint8_t kind = fz_u8(&in) % 4;
@@ -65,7 +66,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             ray = fz_u8(&in) % 2 ? fz_ray_through(&in, rt_affine_point(world, q))
                                  : fz_ray_axis(&in, rt_affine_point(world, q));
         }
-        check_ray(&scene, ray);
+        check_ray(&scene, &trs, ray);
     }
     return 0;
 }

@@ -43,15 +43,14 @@ static int crossings(fz_v3l o, fz_v3l d, fz_crossing c[2])
     return 2;
 }
 
-static void check_ray(const rt_scene *scene, rt_ray ray)
+static void check_ray(const rt_scene *scene, const fz_trs *trs, rt_ray ray)
 {
-    const rt_object *obj = &scene->objects[0];
     rt_ray_setup rs = rt_intersect_prepare(ray);
     rt_scene_hit hit = {0};
     bool found = rt_scene_nearest(scene, &rs, true, &hit);
-    /* The object-space ray exactly as rt_scene_prim_intersect computes it. */
-    fz_v3l o = fz_l(rt_affine_point(&obj->to_object, ray.origin));
-    fz_v3l d = fz_l(rt_affine_vector(&obj->to_object, ray.direction));
+    /* The object-space ray from the scene's description (fz_object_ray). */
+    fz_v3l o, d;
+    fz_object_ray(scene, trs, ray, &o, &d);
     long double s = fz_l_len(o) + 0.5L;
     fz_crossing c[2];
     fz_check_crossings(c, crossings(o, d, c), found, hit.hit.t, ray.t_min, ray.t_max);
@@ -63,7 +62,7 @@ static void check_ray(const rt_scene *scene, rt_ray ray)
     rt_surface surf = rt_surface_at(scene, &ray, &hit);
     fz_check_unit(surf.normal, "sphere normal");
     /* Outward: the normal leaves the centre's side of the tangent plane. */
-    fz_v3l out = fz_l_sub(fz_l(surf.point), fz_l(obj->to_world.translation));
+    fz_v3l out = fz_l_sub(fz_l(surf.point), fz_l(trs->translation));
     FZ_CHECK(fz_l_dot(fz_l(surf.normal), out) > 0, "sphere normal points inwards");
 }
 
@@ -76,7 +75,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         return 0;
     }
     rt_scene scene;
-    fz_scene_one(&scene, RT_SHAPE_SPHERE, NULL, fz_transform(&in));
+    fz_trs trs;
+    fz_scene_one(&scene, RT_SHAPE_SPHERE, NULL, fz_transform_trs(&in, &trs));
     const rt_affine *world = &scene.objects[0].to_world;
     while (in.pos < in.size) {
         uint8_t kind = fz_u8(&in);
@@ -88,7 +88,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             rt_vec3 p = kind % 4 == 3 ? rt_v3_scale(fz_unit_vector(&in), RT_C(0.5)) : fz_vec_range(&in, -0.28, 0.28);
             ray = fz_ray_through(&in, rt_affine_point(world, p));
         }
-        check_ray(&scene, ray);
+        check_ray(&scene, &trs, ray);
     }
     return 0;
 }

@@ -86,6 +86,35 @@ long double fz_quadric_slack(long double o2, long double d2)
     return 64 * FZ_EPS * (o2 + 1) + 1e4L * FZ_ABS * (o2 + 1) / d2;
 }
 
+/* v rotated by -degrees about axis (the transpose of rt_affine_trs's rotation). */
+static fz_v3l unrotate(fz_v3l v, int axis, rt_real degrees)
+{
+    const long double pi = 3.141592653589793238462643383279502884L;
+    long double rad = rt_to_double(degrees) * (pi / 180), c = cosl(rad), s = sinl(rad);
+    long double *k[3] = {&v.x, &v.y, &v.z};
+    long double a = *k[(axis + 1) % 3], b = *k[(axis + 2) % 3];
+    *k[(axis + 1) % 3] = c * a + s * b;
+    *k[(axis + 2) % 3] = -s * a + c * b;
+    return v;
+}
+
+fz_v3l fz_trs_vector_to_object(const fz_trs *trs, rt_vec3 v)
+{
+    fz_v3l r = unrotate(unrotate(unrotate(fz_l(v), 0, trs->rotation_degrees.x), 1, trs->rotation_degrees.y), 2,
+                        trs->rotation_degrees.z);
+    fz_v3l s = fz_l(trs->scale);
+    return (fz_v3l){r.x / s.x, r.y / s.y, r.z / s.z};
+}
+
+fz_v3l fz_trs_point_to_object(const fz_trs *trs, rt_vec3 p)
+{
+    fz_v3l q = fz_l_sub(fz_l(p), fz_l(trs->translation));
+    fz_v3l r = unrotate(unrotate(unrotate(q, 0, trs->rotation_degrees.x), 1, trs->rotation_degrees.y), 2,
+                        trs->rotation_degrees.z);
+    fz_v3l s = fz_l(trs->scale);
+    return (fz_v3l){r.x / s.x, r.y / s.y, r.z / s.z};
+}
+
 bool fz_finite3(rt_vec3 v) { return rt_is_finite(v.x) && rt_is_finite(v.y) && rt_is_finite(v.z); }
 
 void fz_check_crossings(const fz_crossing *c, int n, bool found, rt_real t, rt_real t_min, rt_real t_max)

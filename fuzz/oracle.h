@@ -38,6 +38,17 @@ typedef struct {
     long double x, y, z;
 } fz_v3l;
 
+/* A transform as a scene describes it: world point = translation + Rx Ry Rz S object
+ * point (rotations in degrees, as rt_affine_trs reads them). */
+typedef struct {
+    rt_vec3 translation, rotation_degrees, scale;
+} fz_trs;
+/* World to object space from the description alone, in long double: an oracle that does
+ * not share the kernel's inverse (rt_affine_inverse), so a wrong inverse cannot move
+ * kernel and oracle together. */
+fz_v3l fz_trs_point_to_object(const fz_trs *trs, rt_vec3 p);
+fz_v3l fz_trs_vector_to_object(const fz_trs *trs, rt_vec3 v);
+
 fz_v3l fz_l(rt_vec3 v);
 fz_v3l fz_l_add(fz_v3l a, fz_v3l b);
 fz_v3l fz_l_sub(fz_v3l a, fz_v3l b);
@@ -61,8 +72,6 @@ bool fz_slab(fz_v3l o, fz_v3l d, long double h, long double *t_in, long double *
 long double fz_quadric_slack(long double o2, long double d2);
 /* True when every component of v is finite. */
 bool fz_finite3(rt_vec3 v);
-
-#endif
 
 /* A surface crossing the oracle predicts at t (within tol); robust ones are certain,
  * the others (grazing the boundary of the surface) may or may not be reported. */
@@ -90,3 +99,5 @@ typedef struct {
 /* False when the line is parallel to the plane, or nearly so, or the triangle is
  * degenerate: then the oracle claims nothing. */
 bool fz_triangle_crossing(rt_vec3 a, rt_vec3 b, rt_vec3 c, rt_vec3 o, rt_vec3 d, fz_plane_crossing *out);
+
+#endif

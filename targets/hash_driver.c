@@ -1,11 +1,15 @@
 /* Renders a scene blob (made by `rtk pack`) with nothing but the core and prints its
  * render hash. Built for every compiler, optimisation level and CPU of the determinism
- * matrix (targets/determinism.sh); it needs only a C library to read the file. */
+ * matrix (targets/determinism.sh); it needs only a C library to read the file. An
+ * optional third argument names the BVH kernel (portable, sse2, avx2; default: the
+ * build's own); the matrix passes only kernels the CPU runs. */
 #include "blob.h"
+#include "bvh.h"
 #include "render.h"
 #include "sha256.h"
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 static uint8_t *read_file(const char *path, size_t *size)
 {
@@ -28,8 +32,12 @@ static uint8_t *read_file(const char *path, size_t *size)
 
 int main(int argc, char **argv)
 {
-    if (argc != 3) {
-        fprintf(stderr, "usage: %s SCENE.rtscene ARENA_MIB\n", argv[0]);
+    static const char *const kernels[] = {"portable", "sse2", "avx2"};
+    int kernel = -1;
+    for (int k = 0; argc == 4 && k < 3; k++)
+        if (!strcmp(argv[3], kernels[k])) kernel = k;
+    if (argc != 3 && !(argc == 4 && kernel >= 0)) {
+        fprintf(stderr, "usage: %s SCENE.rtscene ARENA_MIB [portable|sse2|avx2]\n", argv[0]);
         return 2;
     }
     size_t blob_size = 0, arena_size = (size_t)strtoul(argv[2], NULL, 10) << 20;
@@ -53,10 +61,14 @@ int main(int argc, char **argv)
         fprintf(stderr, "%s: %s\n", argv[1], err.what);
         return 3;
     }
+    if (kernel >= 0 && !rt_bvh_set_kernel(&scene.bvh, (rt_kernel)kernel)) {
+        fprintf(stderr, "%s: this build has no %s kernel\n", argv[0], argv[3]);
+        return 2;
+    }
     uint32_t w = scene.camera.width, h = scene.camera.height;
     uint8_t *rgb = malloc((size_t)w * h * 3);
     if (!rgb) return 5;
-    rt_tracer tracer = {&scene, true, NULL};
+    rt_tracer tracer = {.scene = &scene, .use_bvh = true};
     rt_render_region(&tracer, 0, 0, w, h, rgb);
     uint8_t digest[32];
     rt_sha256_ppm(rgb, w, h, digest);

@@ -1,4 +1,4 @@
-/* Standard output caught in a file (capture.h). dup2 rather than Criterion's pipe
+/* Standard output or error caught in a file (capture.h). dup2 rather than Criterion's pipe
  * redirection: a ray tree can be larger than a pipe's buffer. */
 #include "capture.h"
 
@@ -18,19 +18,30 @@ static char *read_all(FILE *f)
     return text;
 }
 
-int capture_stdout(int (*cmd)(int, char **), int argc, char **argv, char **out)
+/* Calls cmd with the descriptor fd (of stream) sent to a temporary file. */
+static int capture(int fd, FILE *stream, int (*cmd)(int, char **), int argc, char **argv, char **out)
 {
     *out = NULL;
     FILE *f = tmpfile();
     if (!f) return -1;
-    fflush(stdout);
-    int saved = dup(STDOUT_FILENO);
-    dup2(fileno(f), STDOUT_FILENO);
+    fflush(stream);
+    int saved = dup(fd);
+    dup2(fileno(f), fd);
     int rc = cmd(argc, argv);
-    fflush(stdout);
-    dup2(saved, STDOUT_FILENO);
+    fflush(stream);
+    dup2(saved, fd);
     close(saved);
     *out = read_all(f);
     fclose(f);
     return rc;
+}
+
+int capture_stdout(int (*cmd)(int, char **), int argc, char **argv, char **out)
+{
+    return capture(STDOUT_FILENO, stdout, cmd, argc, argv, out);
+}
+
+int capture_stderr(int (*cmd)(int, char **), int argc, char **argv, char **out)
+{
+    return capture(STDERR_FILENO, stderr, cmd, argc, argv, out);
 }

@@ -25,7 +25,7 @@ bool rt_test_render(const char *scene_path, unsigned threads, bool use_bvh, rtp_
     out->width = built.scene.camera.width;
     out->height = built.scene.camera.height;
     out->rgb = calloc((size_t)out->width * out->height, 3);
-    rt_tracer tracer = {&built.scene, use_bvh, NULL};
+    rt_tracer tracer = {.scene = &built.scene, .use_bvh = use_bvh};
     rtp_threads_options popt = {threads, 0, false, NULL};
     bool ok = out->rgb && rtp_threads_render(&tracer, &popt, out->rgb);
     rtp_scene_close(&built);

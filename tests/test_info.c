@@ -162,10 +162,10 @@ Test(info, sah_cost_of_a_hand_made_tree)
     rt_bvh_node root = {{{o, h, e, e}, {o, o, e, e}, {o, o, e, e}, {h, l, e, e}, {l, l, e, e}, {l, l, e, e}},
                         {0, 1, 0, 0},
                         {1, 2, RT_BVH_NO_CHILD, RT_BVH_NO_CHILD}};
-    rt_bvh bvh = {&root, 1, NULL, 2, g, RT_ONE};
+    rt_bvh bvh = {&root, 1, NULL, 2, g, RT_ONE, RT_KERNEL_PORTABLE};
     cr_expect_float_eq(rtp_scene_stats_sah_cost(&bvh, 3), 3.0, 1e-12);
     rt_bvh_node lone = {{{o}, {o}, {o}, {l}, {l}, {l}}, {0}, {2, RT_BVH_NO_CHILD, RT_BVH_NO_CHILD, RT_BVH_NO_CHILD}};
-    rt_bvh leaf = {&lone, 1, NULL, 2, g, RT_ONE};
+    rt_bvh leaf = {&lone, 1, NULL, 2, g, RT_ONE, RT_KERNEL_PORTABLE};
     cr_expect_float_eq(rtp_scene_stats_sah_cost(&leaf, 2), 3.0, 1e-12,
                        "a lone leaf: the root's visit and one test per primitive");
     cr_expect_eq(rtp_scene_stats_sah_cost(&bvh, 0), 0.0, "no primitives");

@@ -130,7 +130,7 @@ static rtp_scene open_corpus(const char *name, uint32_t size)
 /* Unclamped pixel colours, row-major. */
 static rt_vec3 *render_colors(const rt_scene *scene)
 {
-    rt_tracer tr = {scene, true, NULL};
+    rt_tracer tr = {.scene = scene, .use_bvh = true};
     uint32_t w = scene->camera.width, h = scene->camera.height;
     rt_vec3 *c = malloc(sizeof *c * w * h);
     cr_assert(c);
@@ -609,7 +609,7 @@ static uint32_t camera_rays(const rt_scene *scene, uint32_t x, uint32_t y)
     static rt_ray_record rays[1 << 16];
     static rt_light_record lights[1 << 16];
     rt_ray_log log = {rays, 0, 1 << 16, lights, 0, 1 << 16, false};
-    rt_tracer tr = {scene, true, &log};
+    rt_tracer tr = {.scene = scene, .use_bvh = true, .log = &log};
     rt_render_pixel(&tr, x, y);
     cr_assert_not(log.overflow);
     uint32_t n = 0;
@@ -736,7 +736,7 @@ Test(montecarlo, image_does_not_depend_on_tiles_or_threads)
 {
     rtp_scene b = open_corpus("more/chess_mcpt.yaml", 24);
     b.scene.camera.trace.samples_per_pixel_index = 1;
-    rt_tracer tr = {&b.scene, true, NULL};
+    rt_tracer tr = {.scene = &b.scene, .use_bvh = true};
     size_t bytes = 24 * 24 * 3;
     uint8_t *rows = calloc(bytes, 1), *tiles = calloc(bytes, 1), *one = calloc(bytes, 1), *two = calloc(bytes, 1);
     rt_render_region(&tr, 0, 0, 24, 24, rows);

@@ -1,6 +1,6 @@
-# make check-valgrind: memcheck over a heavy render and every bad-input case, 0 errors
-# and 0 bytes lost in every category (tests/valgrind.sh). Included by the top-level
-# Makefile; installs valgrind with apt-get when missing, as `make deps` does.
+# make check-valgrind: memcheck over a heavy render (double and fixed builds) and every
+# bad-input case, 0 errors and 0 bytes lost in every category (tests/valgrind.sh).
+# Included by the top-level Makefile; installs valgrind with apt-get when missing, as `make deps` does.
 .PHONY: check-valgrind valgrind-deps
 
 valgrind-deps:
@@ -10,4 +10,5 @@ valgrind-deps:
 
 check-valgrind: deps valgrind-deps
 	$(MAKE) build/rtk
-	tests/valgrind.sh build/rtk
+	$(MAKE) RT_REAL=fixed build-fixed/rtk
+	tests/valgrind.sh build/rtk build-fixed/rtk

@@ -2,6 +2,7 @@
 #include "cli/cli.h"
 
 #include "cli/exit_codes.h"
+#include "thread/kernel.h"
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -45,36 +46,46 @@ int rtp_cli_usage_error(const char *cmd, const char *msg, const char *arg)
     return RTP_EXIT_USAGE;
 }
 
-int rtp_cli_scene_option(const char *cmd, int argc, char **argv, int *i, rtp_scene_options *opt)
+int rtp_cli_parse_scene_option(int argc, char **argv, int *i, rtp_scene_options *opt, const char **problem)
 {
     const char *arg = argv[*i];
     const char *val = *i + 1 < argc ? argv[*i + 1] : NULL;
     uint32_t n;
     if (!strcmp(arg, "--width") || !strcmp(arg, "--height")) {
-        if (!rtp_cli_parse_u32(val, 1, 16384, &n)) return -rtp_cli_usage_error(cmd, "expected 1..16384 after", arg);
+        if (!rtp_cli_parse_u32(val, 1, RT_MAX_IMAGE_SIDE, &n)) return *problem = "expected 1..16384 after", -1;
         *(arg[2] == 'w' ? &opt->width : &opt->height) = n;
     } else if (!strcmp(arg, "--depth")) {
-        if (!rtp_cli_parse_u32(val, 0, 64, &n)) return -rtp_cli_usage_error(cmd, "expected 0..64 after", arg);
+        if (!rtp_cli_parse_u32(val, 0, RT_MAX_RECURSION_DEPTH, &n)) return *problem = "expected 0..64 after", -1;
         opt->depth = (int32_t)n;
     } else if (!strcmp(arg, "--aa")) {
-        if (!rtp_cli_parse_u32(val, 0, 7, &n)) return -rtp_cli_usage_error(cmd, "expected 0..7 after", arg);
+        if (!rtp_cli_parse_u32(val, 0, RT_MAX_SPP_INDEX, &n)) return *problem = "expected 0..7 after", -1;
         opt->aa = (int32_t)n;
     } else if (!strcmp(arg, "--spp")) {
-        /* The format counts samples as 4^index: a power of 4, 1..16384 (§5.1.1). */
-        if (!rtp_cli_parse_u32(val, 1, 16384, &n) || (n & (n - 1)) || !(n & 0x55555555u))
-            return -rtp_cli_usage_error(cmd, "expected a power of 4 (1, 4, 16, ..., 16384) after", arg);
+        /* The format counts samples as 4^index: a power of 4, 1..16384. */
+        if (!rtp_cli_parse_u32(val, 1, 1u << (2 * RT_MAX_SPP_INDEX), &n) || (n & (n - 1)) || !(n & 0x55555555u))
+            return *problem = "expected a power of 4 (1, 4, 16, ..., 16384) after", -1;
         opt->aa = __builtin_ctz(n) / 2;
     } else if (!strcmp(arg, "--assets")) {
-        if (!val) return -rtp_cli_usage_error(cmd, "missing folder after", arg);
+        if (!val) return *problem = "missing folder after", -1;
         opt->assets_root = val;
     } else if (!strcmp(arg, "--max-memory")) {
-        if (!rtp_cli_parse_bytes(val, &opt->max_memory))
-            return -rtp_cli_usage_error(cmd, "expected a size such as 512M after", arg);
+        if (!rtp_cli_parse_bytes(val, &opt->max_memory)) return *problem = "expected a size such as 512M after", -1;
+    } else if (!strcmp(arg, "--kernel")) {
+        if (!rtp_kernel_parse(val, &opt->kernel)) return *problem = "expected portable, sse2 or avx2 after", -1;
+        if (!rtp_kernel_runs(opt->kernel)) return *problem = "this CPU or build cannot run the kernel given by", -1;
+        opt->kernel_forced = true;
     } else {
         return 0;
     }
     (*i)++;
     return 1;
+}
+
+int rtp_cli_scene_option(const char *cmd, int argc, char **argv, int *i, rtp_scene_options *opt)
+{
+    const char *problem;
+    int rc = rtp_cli_parse_scene_option(argc, argv, i, opt, &problem);
+    return rc < 0 ? -rtp_cli_usage_error(cmd, problem, argv[*i]) : rc;
 }
 
 int rtp_cli_common_option(const char *cmd, const char *usage, int argc, char **argv, int *i, rtp_scene_options *opt)

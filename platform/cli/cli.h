@@ -14,8 +14,13 @@ bool rtp_cli_parse_bytes(const char *s, size_t *out);
 /* Prints "rtk <cmd>: <msg>" and a hint to stderr; returns RTP_EXIT_USAGE. */
 int rtp_cli_usage_error(const char *cmd, const char *msg, const char *arg);
 
+/* Parses the scene option at argv[*i] (see rtp_cli_scene_option) without printing: 1 when
+ * consumed (*i advanced past its value), 0 when argv[*i] is not one, -1 with *problem set
+ * (a phrase to put before the option's name) when its value is wrong. */
+int rtp_cli_parse_scene_option(int argc, char **argv, int *i, rtp_scene_options *opt, const char **problem);
+
 /* The scene options every scene-reading subcommand shares (--width --height --depth
- * --aa --spp --assets --max-memory), at argv[*i]. Returns 1 when it consumed the option (and
+ * --aa --spp --assets --max-memory --kernel), at argv[*i]. Returns 1 when it consumed the option (and
  * its value; *i is advanced past it), 0 when argv[*i] is not one of them, or
  * RTP_EXIT_USAGE's negation after printing a usage error. */
 int rtp_cli_scene_option(const char *cmd, int argc, char **argv, int *i, rtp_scene_options *opt);
@@ -36,6 +41,8 @@ int rtp_cli_open_scene(const char *cmd, const char *path, const rtp_scene_option
     "  --aa N              override Samples Per Pixel: 4^N samples per pixel, N 0..7\n"               \
     "  --spp N             the same as N samples per pixel, N a power of 4 (1, 4, ..., 16384)\n"      \
     "  --assets DIR        the folder that contains assets/ (default: found from the scene's path)\n" \
-    "  --max-memory SIZE   cap on scene memory, e.g. 512M or 4G (default 4G)\n"
+    "  --max-memory SIZE   cap on scene memory, e.g. 512M or 4G (default 4G)\n"                       \
+    "  --kernel NAME       BVH code: portable, sse2 or avx2 (default: the fastest this CPU\n"         \
+    "                      runs); the image does not depend on it\n"
 
 #endif

@@ -13,7 +13,6 @@
 /* Rays (and light records) logged per run: far more than a Whitted tree of one pixel
  * needs at the default settings; deep, many-light or heavily sampled pixels are cut
  * short with a note, and their colour stays exact. */
-#define LOG_CAPACITY (1u << 16)
 
 static const char usage[] =
     "usage: rtk debug SCENE.yaml --pixel X,Y [options]\n"
@@ -113,7 +112,7 @@ static int write_svg(const debug_args *a, const rtp_pixel_trace *pt)
         fprintf(stderr, "rtk debug: %s: no memory for a %ux%u image\n", a->scene, img.width, img.height);
         return RTP_EXIT_MEMORY;
     }
-    rt_tracer tracer = {scene, true, NULL};
+    rt_tracer tracer = {.scene = scene, .use_bvh = true};
     rtp_threads_options popt = {0, 0, isatty(STDERR_FILENO) != 0, NULL};
     int rc = RTP_EXIT_OK;
     char err[RTP_ERR_SIZE];
@@ -138,7 +137,7 @@ int rtp_cmd_debug(int argc, char **argv)
     if (rc != RTP_EXIT_OK) return rc;
     rtp_pixel_trace pt;
     rc = check_pixel(&a, &built.scene.camera);
-    if (rc == RTP_EXIT_OK && !rtp_pixel_trace_run(&pt, &built, a.x, a.y, a.sample, LOG_CAPACITY)) {
+    if (rc == RTP_EXIT_OK && !rtp_pixel_trace_run(&pt, &built, a.x, a.y, a.sample, RTP_PIXEL_TRACE_CAPACITY)) {
         fprintf(stderr, "rtk debug: no memory for the ray log\n");
         rc = RTP_EXIT_MEMORY;
     }
@@ -147,7 +146,7 @@ int rtp_cmd_debug(int argc, char **argv)
         return rc;
     }
     if (pt.log.overflow)
-        fprintf(stderr, "rtk debug: the ray log is full: only the first %u rays are shown\n", LOG_CAPACITY);
+        fprintf(stderr, "rtk debug: the ray log is full: only the first %u rays are shown\n", RTP_PIXEL_TRACE_CAPACITY);
     if (a.json)
         rtp_debug_print_json(stdout, &pt);
     else

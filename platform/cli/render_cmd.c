@@ -3,14 +3,17 @@
 
 #include "cli/cli.h"
 #include "cli/exit_codes.h"
+#include "cli/render_part.h"
 #include "image/image.h"
 #include "load/scene_open.h"
+#include "part/part_file.h"
 #include "sha256.h"
 #include "thread/threads.h"
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <unistd.h>
 
 static volatile int interrupted;
@@ -32,6 +35,10 @@ static const char usage[] = "usage: rtk render SCENE.yaml [-o OUT.png|OUT.ppm] [
                             "  --tile N            tile side in pixels (default 32); the image does not depend on it\n"
                             "  --hash              print the render hash (SHA-256 of the P6 PPM bytes) on stdout\n"
                             "  --no-bvh            test every primitive for every ray (slow; the image is identical)\n"
+                            "  --region X0,Y0,X1,Y1  render only columns X0..X1-1 of rows Y0..Y1-1 of the frame, as\n"
+                            "                      a part for rtk stitch (-o PART.png)\n"
+                            "  --part I/N          render part I of N (I counts from 0: 0..N-1), a band of rows;\n"
+                            "                      the cut is the same on every machine (docs/distributed.md)\n"
                             "  --quiet             no progress bar\n"
                             "  --progress          progress bar even when stderr is not a terminal\n"
                             "\n"
@@ -42,8 +49,15 @@ typedef struct {
     const char *scene, *output;
     rtp_scene_options build;
     rtp_threads_options parallel;
+    rtp_part_request part;
     bool hash, use_bvh, quiet, force_progress;
 } render_args;
+
+static bool ends_with_png(const char *path)
+{
+    size_t n = strlen(path);
+    return n >= 4 && !strcasecmp(path + n - 4, ".png");
+}
 
 static int parse_args(int argc, char **argv, render_args *a)
 {
@@ -57,6 +71,9 @@ static int parse_args(int argc, char **argv, render_args *a)
         int common = rtp_cli_common_option("render", usage, argc, argv, &i, &a->build);
         if (common < 0) return -common;
         if (common > 0) continue;
+        int part = rtp_part_request_option("render", argc, argv, &i, &a->part);
+        if (part < 0) return -part;
+        if (part > 0) continue;
         if (!strcmp(arg, "-o") || !strcmp(arg, "--output")) {
             if (!val) return rtp_cli_usage_error("render", "missing file after", arg);
             a->output = val, i++;
@@ -83,6 +100,10 @@ static int parse_args(int argc, char **argv, render_args *a)
     }
     if (!a->scene) return rtp_cli_usage_error("render", "no scene file given", NULL);
     if (!a->output && !a->hash) return rtp_cli_usage_error("render", "nothing to do: give -o FILE and/or --hash", NULL);
+    if (a->part.wanted && a->hash)
+        return rtp_cli_usage_error("render", "--hash is the whole frame's: rtk stitch --hash gives it for parts", NULL);
+    if (a->part.wanted && !ends_with_png(a->output))
+        return rtp_cli_usage_error("render", "a part is a PNG file: expected -o NAME.png, not", a->output);
     return RTP_EXIT_OK;
 }
 
@@ -103,27 +124,39 @@ int rtp_cmd_render(int argc, char **argv)
     rc = rtp_cli_open_scene("render", a.scene, &a.build, &built);
     if (rc != RTP_EXIT_OK) return rc;
     const rt_camera *cam = &built.scene.camera;
-    rtp_image img = {cam->width, cam->height, calloc((size_t)cam->width * cam->height, 3)};
-    if (!img.rgb) {
-        fprintf(stderr, "rtk render: %s: no memory for a %ux%u image\n", a.scene, cam->width, cam->height);
+    rtp_part part = {.region = {0, 0, cam->width, cam->height}};
+    if (a.part.wanted) rc = rtp_part_plan("render", a.scene, &built, &a.part, a.build.threads, &part);
+    if (rc != RTP_EXIT_OK) {
         rtp_scene_close(&built);
+        return rc;
+    }
+    rtp_image img = {part.region.x1 - part.region.x0, part.region.y1 - part.region.y0, NULL};
+    img.rgb = calloc((size_t)img.width * img.height, 3);
+    if (!img.rgb) {
+        fprintf(stderr, "rtk render: %s: no memory for a %ux%u image\n", a.scene, img.width, img.height);
+        rtp_scene_close(&built);
+        rtp_part_free(&part);
         return RTP_EXIT_MEMORY;
     }
-    rt_tracer tracer = {&built.scene, a.use_bvh, NULL};
+    rt_tracer tracer = {.scene = &built.scene, .use_bvh = a.use_bvh};
     a.parallel.progress = !a.quiet && (a.force_progress || isatty(STDERR_FILENO));
     a.parallel.cancel = &interrupted;
     signal(SIGINT, on_signal);
     signal(SIGTERM, on_signal);
-    bool complete = rtp_threads_render(&tracer, &a.parallel, img.rgb);
+    bool complete = rtp_threads_render_region(&tracer, &a.parallel, part.region, img.rgb);
     rtp_scene_close(&built);
     if (!complete) {
         fprintf(stderr, "rtk render: %s: interrupted; nothing written\n", a.scene);
         rtp_image_free(&img);
+        rtp_part_free(&part);
         return RTP_EXIT_INTERRUPTED;
     }
     rc = RTP_EXIT_OK;
     char err[RTP_ERR_SIZE];
-    if (a.output && !rtp_image_write(a.output, &img, err, sizeof err)) {
+    bool written = !a.output || (a.part.wanted ? rtp_part_write(a.output, &part, img.rgb, err, sizeof err)
+                                               : rtp_image_write(a.output, &img, err, sizeof err));
+    rtp_part_free(&part);
+    if (!written) {
         fprintf(stderr, "rtk render: %s\n", err);
         rc = RTP_EXIT_OUTPUT;
     }

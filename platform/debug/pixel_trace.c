@@ -64,12 +64,12 @@ bool rtp_pixel_trace_run(rtp_pixel_trace *pt, const rtp_scene *built, uint32_t x
         rtp_pixel_trace_free(pt);
         return false;
     }
-    rt_tracer logged = {scene, true, &pt->log};
+    rt_tracer logged = {.scene = scene, .use_bvh = true, .log = &pt->log};
     if (sample == RTP_PIXEL_ALL_SAMPLES) {
         pt->color = rt_render_pixel(&logged, x, y);
     } else {
         rt_render_sample(&logged, x, y, sample);
-        rt_tracer plain = {scene, true, NULL};
+        rt_tracer plain = {.scene = scene, .use_bvh = true};
         pt->color = rt_render_pixel(&plain, x, y);
     }
     pt->rgb[0] = rt_render_color_byte(pt->color.x);

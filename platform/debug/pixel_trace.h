@@ -7,6 +7,8 @@
 #include "render.h"
 
 #define RTP_PIXEL_ALL_SAMPLES UINT32_MAX
+/* The rays (and light records) a pixel trace logs by default: more than any corpus pixel needs. */
+#define RTP_PIXEL_TRACE_CAPACITY (1u << 16)
 
 typedef struct {
     const rtp_scene *built;

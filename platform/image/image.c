@@ -1,6 +1,7 @@
 /* Image files: PNG through libspng, binary PPM (P6, maxval 255) by hand; 8-bit RGB in memory. */
 #include "image/image.h"
 #include "image/file_write.h"
+#include "scene.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -13,8 +14,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-/* Against decompression bombs and absurd headers: a 16384x16384 RGB image is 768 MiB. */
-#define RTP_IMAGE_MAX_SIDE 16384u
+/* Against decompression bombs and absurd headers: the scene's image limit, RT_MAX_IMAGE_SIDE. */
 /* Larger than any PNG or PPM within the side limit, so a huge file is refused before reading. */
 #define RTP_IMAGE_MAX_FILE (1u << 30)
 /* Ancillary chunks (text, ICC profiles) are skipped, but spng still buffers them. */
@@ -77,9 +77,9 @@ static bool read_whole_file(const char *path, uint8_t **data, size_t *size, char
 static bool check_size(const char *path, uint32_t w, uint32_t h, char *err, size_t err_size)
 {
     if (w == 0 || h == 0) return fail(err, err_size, path, "image has zero width or height");
-    if (w > RTP_IMAGE_MAX_SIDE || h > RTP_IMAGE_MAX_SIDE)
-        return fail(err, err_size, path, "image %ux%u exceeds the %ux%u limit", w, h, RTP_IMAGE_MAX_SIDE,
-                    RTP_IMAGE_MAX_SIDE);
+    if (w > RT_MAX_IMAGE_SIDE || h > RT_MAX_IMAGE_SIDE)
+        return fail(err, err_size, path, "image %ux%u exceeds the %ux%u limit", w, h, RT_MAX_IMAGE_SIDE,
+                    RT_MAX_IMAGE_SIDE);
     return true;
 }
 
@@ -90,7 +90,7 @@ static bool png_decode(const char *path, const uint8_t *data, size_t size, rtp_i
     struct spng_ihdr ihdr;
     size_t len = 0;
     uint8_t *rgb = NULL;
-    int rc = spng_set_image_limits(ctx, RTP_IMAGE_MAX_SIDE, RTP_IMAGE_MAX_SIDE);
+    int rc = spng_set_image_limits(ctx, RT_MAX_IMAGE_SIDE, RT_MAX_IMAGE_SIDE);
     if (rc == 0) rc = spng_set_chunk_limits(ctx, RTP_PNG_CHUNK_LIMIT, RTP_PNG_CHUNK_LIMIT);
     if (rc == 0) rc = spng_set_png_buffer(ctx, data, size);
     if (rc == 0) rc = spng_get_ihdr(ctx, &ihdr);
@@ -102,8 +102,7 @@ static bool png_decode(const char *path, const uint8_t *data, size_t size, rtp_i
     if (rc != 0) {
         free(rgb);
         if (rc == SPNG_EUSER_WIDTH || rc == SPNG_EUSER_HEIGHT)
-            return fail(err, err_size, path, "PNG exceeds the %ux%u image limit", RTP_IMAGE_MAX_SIDE,
-                        RTP_IMAGE_MAX_SIDE);
+            return fail(err, err_size, path, "PNG exceeds the %ux%u image limit", RT_MAX_IMAGE_SIDE, RT_MAX_IMAGE_SIDE);
         if (rc == SPNG_EOF || rc == SPNG_IO_EOF) return fail(err, err_size, path, "truncated PNG (file ends early)");
         return fail(err, err_size, path, "invalid PNG: %s", spng_strerror(rc));
     }

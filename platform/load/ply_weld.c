@@ -4,6 +4,7 @@
  * index (format §7.4) and needs that; rendering at level 0 is unchanged. */
 #include "load/ply_weld.h"
 
+#include "hash.h"
 #include <stdlib.h>
 #include <string.h>
 
@@ -23,14 +24,7 @@ static vertex_key key_of(const rtp_ply_mesh *m, uint32_t v)
     return k;
 }
 
-/* FNV-1a over the key's bytes. */
-static uint64_t hash_of(const vertex_key *k)
-{
-    const uint8_t *p = (const uint8_t *)k;
-    uint64_t h = 14695981039346656037ull;
-    for (size_t i = 0; i < sizeof *k; i++) h = (h ^ p[i]) * 1099511628211ull;
-    return h;
-}
+static uint64_t hash_of(const vertex_key *k) { return rt_hash_bytes(k, sizeof *k); }
 
 bool rtp_ply_weld(rtp_ply_mesh *m)
 {

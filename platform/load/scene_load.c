@@ -18,7 +18,6 @@
 #include "load/yaml_read.h"
 
 #define UNSET UINT32_MAX /* an index not assigned yet; as a material: not traced */
-#define MAX_IMAGE_SIDE 16384
 #define MAX_NODE_DEPTH 1000
 
 /* A growable array of fixed-size elements. */
@@ -69,6 +68,7 @@ typedef struct {
     store *st;
     list names;                                /* char *, the Name of each enabled node: rtp_loaded_scene.node_names */
     list material_names, texture_names;        /* char *, by desc index */
+    list asset_paths;                          /* char *, each asset file read: rtp_loaded_scene.asset_paths */
     list textures, meshes, shaders, materials; /* the *_decl of the sections */
     uint32_t cube, square;                     /* desc.meshes index of the built-ins once used */
     bool have_camera;
@@ -267,32 +267,36 @@ static bool read_camera(rtp_yaml *y, const yaml_node_t *c, const rt_affine *worl
     rt_trace_settings *s = &cam->trace;
     yaml_node_t *t;
     double fov, ortho, focus, aperture, difference, std_error;
+    uint32_t shadows, monte_carlo, count_type;
     memset(cam, 0, sizeof *cam);
     cam->world = *world;
     if (!rtp_yaml_real(y, c, "FOV", 50.0, &fov) ||
         !rtp_yaml_bool(y, c, "Perspective Camera?", true, &cam->perspective) ||
         !rtp_yaml_real(y, c, "Orthographic View Width", 5.0, &ortho) ||
-        !rtp_yaml_uint(y, c, "Render Width (px)", 1280, 1, MAX_IMAGE_SIDE, &cam->width) ||
-        !rtp_yaml_uint(y, c, "Render Height (px)", 720, 1, MAX_IMAGE_SIDE, &cam->height) ||
+        !rtp_yaml_uint(y, c, "Render Width (px)", 1280, 1, RT_MAX_IMAGE_SIDE, &cam->width) ||
+        !rtp_yaml_uint(y, c, "Render Height (px)", 720, 1, RT_MAX_IMAGE_SIDE, &cam->height) ||
         !rtp_yaml_map(y, c, "Trace", false, &t))
         return false;
     size_t mark = rtp_yaml_push(y, "Trace");
     if (!rtp_yaml_uint(y, t, "Maximum Recursion Depth", 5, 0, RT_MAX_RECURSION_DEPTH, &s->max_depth) ||
-        !rtp_yaml_index(y, t, "Shadows", 0, 2, &s->shadows) ||
+        !rtp_yaml_index(y, t, "Shadows", RT_SHADOWS_NONE, RT_SHADOWS_LAST, &shadows) ||
         !rtp_yaml_bool(y, t, "Reflections", true, &s->reflections) ||
         !rtp_yaml_bool(y, t, "Refractions", true, &s->refractions) ||
-        !rtp_yaml_index(y, t, "Samples Per Pixel", 0, 7, &s->samples_per_pixel_index) ||
-        !rtp_yaml_index(y, t, "Monte Carlo", 0, 2, &s->monte_carlo) ||
+        !rtp_yaml_index(y, t, "Samples Per Pixel", 0, RT_MAX_SPP_INDEX, &s->samples_per_pixel_index) ||
+        !rtp_yaml_index(y, t, "Monte Carlo", RT_MONTE_CARLO_OFF, RT_MONTE_CARLO_LAST, &monte_carlo) ||
         !rtp_yaml_bool(y, t, "Diffuse Reflection", true, &s->diffuse_reflection) ||
         !rtp_yaml_bool(y, t, "Caustics", true, &s->caustics) ||
         !rtp_yaml_bool(y, t, "Random Single Branching", true, &s->random_single_branching) ||
         !rtp_yaml_real(y, t, "Focus Distance", 1.0, &focus) || !rtp_yaml_real(y, t, "Aperture Size", 0.0, &aperture) ||
-        !rtp_yaml_index(y, t, "Sample Count Type", 0, 2, &s->sample_count_type) ||
-        !rtp_yaml_index(y, t, "Minimum Samples", 0, 4, &s->min_samples_index) ||
-        !rtp_yaml_index(y, t, "Maximum Samples", 2, 6, &s->max_samples_index) ||
+        !rtp_yaml_index(y, t, "Sample Count Type", RT_SAMPLES_CONSTANT, RT_SAMPLES_LAST, &count_type) ||
+        !rtp_yaml_index(y, t, "Minimum Samples", 0, RT_MAX_MIN_SAMPLES_INDEX, &s->min_samples_index) ||
+        !rtp_yaml_index(y, t, "Maximum Samples", 2, RT_MAX_MAX_SAMPLES_INDEX, &s->max_samples_index) ||
         !rtp_yaml_real(y, t, "Difference Threshold", 0.02, &difference) ||
         !rtp_yaml_real(y, t, "Std. Error Threshold", 0.02, &std_error))
         return false;
+    s->shadows = (rt_shadow_mode)shadows;
+    s->monte_carlo = (rt_monte_carlo_mode)monte_carlo;
+    s->sample_count_type = (rt_sample_count_type)count_type;
     rtp_yaml_pop(y, mark);
     if (!(fov > 0.0 && fov < 180.0))
         return rtp_yaml_expected(y, rtp_yaml_get(y, c, "FOV"), "FOV", "degrees between 0 and 180 (both excluded)");
@@ -333,9 +337,8 @@ static bool load_light(loader *L, const yaml_node_t *c, rt_light_kind kind, cons
             return rtp_yaml_fail(y, rtp_yaml_get(y, c, "Intensity Multiplier"), "Intensity Multiplier",
                                  "Color times Intensity Multiplier overflows");
     }
-    /* A directional light shines along its node's local +Y axis (as core/scene_build.c derives it). */
-    if (kind == RT_LIGHT_DIRECTIONAL &&
-        rt_v3_is_zero(rt_v3_normalize(rt_affine_vector(world, rt_v3(RT_ZERO, RT_ONE, RT_ZERO)))))
+    /* Refused here too, to name the place in the file. */
+    if (kind == RT_LIGHT_DIRECTIONAL && rt_v3_is_zero(rt_scene_light_direction(world)))
         return rtp_yaml_fail(y, c, NULL, "the node's Transform scales its Y axis to 0: the light has no direction");
     rt_light_desc *l = push(L, &L->st->lights, sizeof *l);
     if (!l) return false;
@@ -459,15 +462,6 @@ static bool load_component(loader *L, const yaml_node_t *key, const yaml_node_t 
 
 /* ---- Node tree ---- */
 
-static bool affine_is_finite(const rt_affine *a)
-{
-    for (int i = 0; i < 3; i++)
-        if (!rt_is_finite(a->linear.m[i][0]) || !rt_is_finite(a->linear.m[i][1]) || !rt_is_finite(a->linear.m[i][2]) ||
-            !rt_is_finite(rt_v3_get(a->translation, i)))
-            return false;
-    return true;
-}
-
 /* parent * T * R * S of the node's Transform component (format §4.2). */
 static bool node_transform(rtp_yaml *y, const yaml_node_t *components, const rt_affine *parent, rt_affine *world)
 {
@@ -481,7 +475,7 @@ static bool node_transform(rtp_yaml *y, const yaml_node_t *components, const rt_
     rtp_yaml_pop(y, mark);
     rt_affine local = rt_affine_trs(vec3(translation), vec3(rotation), vec3(scale));
     *world = rt_affine_mul(parent, &local);
-    if (!affine_is_finite(world))
+    if (!rt_affine_is_finite(world))
         return rtp_yaml_fail(y, t, "Transform", "the node's world transform overflows (a huge Scale or Translation?)");
     return true;
 }
@@ -603,6 +597,10 @@ static bool load_texture(loader *L, texture_decl *t)
     bool ok = asset_path(L, t->node, &path);
     if (ok && !rtp_image_read(path, &img, why, sizeof why))
         ok = rtp_yaml_fail(&L->y, rtp_yaml_get(&L->y, t->node, "Path"), "Path", "%s", why);
+    if (ok && !push_name(L, &L->asset_paths, path)) {
+        rtp_image_free(&img);
+        ok = false;
+    }
     free(path);
     if (!ok) return false;
     rtp_image *owned = push(L, &L->st->images, sizeof *owned);
@@ -631,7 +629,7 @@ static bool load_mesh(loader *L, mesh_decl *m)
     }
     if (!rtp_ply_read(m->resolved, &ply, why, sizeof why))
         return rtp_yaml_fail(&L->y, rtp_yaml_get(&L->y, m->node, "Path"), "Path", "%s", why);
-    rtp_ply_mesh *owned = push(L, &L->st->plys, sizeof *owned);
+    rtp_ply_mesh *owned = push_name(L, &L->asset_paths, m->resolved) ? push(L, &L->st->plys, sizeof *owned) : NULL;
     if (!owned) {
         rtp_ply_free(&ply);
         return false;
@@ -681,6 +679,8 @@ static void hand_over(loader *L, rtp_loaded_scene *out)
     out->node_count = L->names.count;
     out->material_names = L->material_names.data;
     out->texture_names = L->texture_names.data;
+    out->asset_paths = L->asset_paths.data;
+    out->asset_count = L->asset_paths.count;
     d->materials = st->materials.data;
     d->material_count = st->materials.count;
     d->textures = st->textures.data;
@@ -710,6 +710,7 @@ bool rtp_scene_load(const char *path, const char *assets_root, rtp_loaded_scene 
         rtp_loaded_scene partial = {.storage = L.st, .node_names = L.names.data, .node_count = L.names.count};
         free_names(L.material_names.data, L.material_names.count);
         free_names(L.texture_names.data, L.texture_names.count);
+        free_names(L.asset_paths.data, L.asset_paths.count);
         rtp_scene_unload(&partial);
     }
     for (uint32_t i = 0; i < L.meshes.count; i++) free(((mesh_decl *)L.meshes.data)[i].resolved);
@@ -735,5 +736,6 @@ void rtp_scene_unload(rtp_loaded_scene *scene)
         free(st);
     }
     free_names(scene->node_names, scene->node_count);
+    free_names(scene->asset_paths, scene->asset_count);
     memset(scene, 0, sizeof *scene);
 }

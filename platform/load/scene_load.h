@@ -17,6 +17,10 @@ typedef struct {
     /* Names of desc.materials[i] and desc.textures[i], as the file's sections call them. */
     char **material_names;
     char **texture_names;
+    /* The paths of the asset files read, as opened, in the order read (textures, then
+     * meshes): what a distributed part digests besides the scene file. */
+    char **asset_paths;
+    uint32_t asset_count;
     /* Owned storage behind desc (materials, textures, meshes, objects, lights...). */
     void *storage;
 } rtp_loaded_scene;

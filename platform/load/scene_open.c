@@ -1,7 +1,9 @@
 /* Load + build with an arena that grows (up to the memory cap) until the scene fits. */
 #include "load/scene_open.h"
 
+#include "bvh.h"
 #include "cli/exit_codes.h"
+#include "thread/kernel.h"
 #include "thread/threads.h"
 #include <stdio.h>
 #include <stdlib.h>
@@ -39,7 +41,10 @@ int rtp_scene_open(const char *path, const rtp_scene_options *opt, rtp_scene *ou
         rt_build_error be;
         rt_workers workers = rtp_threads_workers(opt->threads);
         rt_status st = rt_scene_build(&out->loaded.desc, &out->arena, &workers, &out->scene, &be);
-        if (st == RT_OK) return RTP_EXIT_OK;
+        if (st == RT_OK) {
+            rt_bvh_set_kernel(&out->scene.bvh, opt->kernel_forced ? opt->kernel : rtp_kernel_best());
+            return RTP_EXIT_OK;
+        }
         free(out->memory);
         out->memory = NULL;
         if (st == RT_ERR_NOMEM && size < opt->max_memory) {
@@ -72,7 +77,8 @@ void rtp_scene_close(rtp_scene *b)
 rtp_scene_options rtp_scene_default_options(void)
 {
     rtp_scene_options o = {0};
-    o.max_memory = (size_t)4 << 30;
+    /* 4 GiB, or all a 32-bit size_t can count (wasm32), where 4 << 30 would wrap to 0. */
+    o.max_memory = (uint64_t)4 << 30 > SIZE_MAX ? SIZE_MAX : (size_t)((uint64_t)4 << 30);
     o.depth = -1;
     o.aa = -1;
     return o;

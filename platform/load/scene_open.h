@@ -10,9 +10,11 @@ typedef struct {
     size_t max_memory;       /* arena cap in bytes */
     /* Overrides applied to the file's camera when non-zero / non-negative. */
     uint32_t width, height;
-    int32_t depth;    /* -1: keep the file's Maximum Recursion Depth */
-    int32_t aa;       /* -1: keep the file's Samples Per Pixel index */
-    uint32_t threads; /* for the BVH build; 0: one per online CPU */
+    int32_t depth;      /* -1: keep the file's Maximum Recursion Depth */
+    int32_t aa;         /* -1: keep the file's Samples Per Pixel index */
+    uint32_t threads;   /* for the BVH build; 0: one per online CPU */
+    bool kernel_forced; /* run `kernel` (which must run here, see kernel.h), not the best */
+    rt_kernel kernel;
 } rtp_scene_options;
 
 typedef struct {

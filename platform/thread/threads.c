@@ -11,6 +11,7 @@
 typedef struct {
     const rt_tracer *tracer;
     uint8_t *rgb;
+    rt_rect region;
     uint32_t tile, tiles_x, tile_count;
     atomic_uint next_tile;
     atomic_uint done_tiles;
@@ -20,15 +21,15 @@ typedef struct {
 static void *worker(void *arg)
 {
     job *j = arg;
-    const rt_camera *cam = &j->tracer->scene->camera;
+    const rt_rect *r = &j->region;
     for (;;) {
         if (j->cancel && *j->cancel) break;
         unsigned t = atomic_fetch_add(&j->next_tile, 1);
         if (t >= j->tile_count) break;
-        uint32_t x0 = (t % j->tiles_x) * j->tile, y0 = (t / j->tiles_x) * j->tile;
-        uint32_t x1 = x0 + j->tile < cam->width ? x0 + j->tile : cam->width;
-        uint32_t y1 = y0 + j->tile < cam->height ? y0 + j->tile : cam->height;
-        rt_render_region(j->tracer, x0, y0, x1, y1, j->rgb);
+        uint32_t x0 = r->x0 + (t % j->tiles_x) * j->tile, y0 = r->y0 + (t / j->tiles_x) * j->tile;
+        uint32_t x1 = r->x1 - x0 > j->tile ? x0 + j->tile : r->x1;
+        uint32_t y1 = r->y1 - y0 > j->tile ? y0 + j->tile : r->y1;
+        rt_render_rect(j->tracer, (rt_rect){x0, y0, x1, y1}, *r, j->rgb);
         atomic_fetch_add(&j->done_tiles, 1);
     }
     return NULL;
@@ -109,12 +110,18 @@ rt_workers rtp_threads_workers(uint32_t threads)
 bool rtp_threads_render(const rt_tracer *tr, const rtp_threads_options *opt, uint8_t *rgb)
 {
     const rt_camera *cam = &tr->scene->camera;
+    return rtp_threads_render_region(tr, opt, (rt_rect){0, 0, cam->width, cam->height}, rgb);
+}
+
+bool rtp_threads_render_region(const rt_tracer *tr, const rtp_threads_options *opt, rt_rect region, uint8_t *rgb)
+{
     job j;
     j.tracer = tr;
     j.rgb = rgb;
+    j.region = region;
     j.tile = opt->tile_size ? opt->tile_size : 32;
-    j.tiles_x = (cam->width + j.tile - 1) / j.tile;
-    j.tile_count = j.tiles_x * ((cam->height + j.tile - 1) / j.tile);
+    j.tiles_x = (j.region.x1 - j.region.x0 + j.tile - 1) / j.tile;
+    j.tile_count = j.tiles_x * ((j.region.y1 - j.region.y0 + j.tile - 1) / j.tile);
     atomic_init(&j.next_tile, 0);
     atomic_init(&j.done_tiles, 0);
     j.cancel = opt->cancel;

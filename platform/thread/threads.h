@@ -19,6 +19,9 @@ typedef struct {
  * (then rgb is incomplete and must not be used). The pixels never depend on the thread
  * count, tile size or scheduling: each pixel is a function of the scene alone. */
 bool rtp_threads_render(const rt_tracer *tr, const rtp_threads_options *opt, uint8_t *rgb);
+/* The same for one rectangle of the frame: rgb holds only its pixels (a part of a
+ * distributed render). */
+bool rtp_threads_render_region(const rt_tracer *tr, const rtp_threads_options *opt, rt_rect region, uint8_t *rgb);
 
 /* The number of threads a request stands for: itself, or one per online CPU for 0. */
 uint32_t rtp_threads_count(uint32_t requested);

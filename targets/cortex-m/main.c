@@ -54,7 +54,7 @@ int main(void)
         rt_board_print("rtk: arena too small for the image\n");
         return 1;
     }
-    rt_tracer tracer = {&scene, true, 0};
+    rt_tracer tracer = {.scene = &scene, .use_bvh = true};
     uint32_t start = rt_board_centiseconds();
     rt_render_region(&tracer, 0, 0, w, h, rgb);
     uint32_t elapsed = rt_board_centiseconds() - start;

@@ -1,0 +1,143 @@
+/* A BVH leaf visited by one ray: the exact test of each of its references, keeping the
+ * nearest hit with the tie rule of bvh.h. In the double build the triangles' edge
+ * functions are first computed two at a time (vector_size(16) doubles: SSE2, NEON),
+ * with exactly the scalar test's operations, so only triangles that test can hit take
+ * the whole test. Included by scene_query.c and the packet walks (bvh_packet.h). */
+#ifndef RT_BVH_LEAF_H
+#define RT_BVH_LEAF_H
+
+#include "bvh.h"
+#include "scene_query.h"
+
+static bool quadric_intersect(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs, rt_prim_hit *hit)
+{
+    const rt_object *obj = &scene->objects[scene->quadric_objects[prim - scene->triangle_count]];
+    rt_vec3 o = rt_affine_point(&obj->to_object, rs->ray.origin);
+    rt_vec3 d = rt_affine_vector(&obj->to_object, rs->ray.direction);
+    /* Solve with a unit object-space direction and scale t back: the short direction of a
+     * scaled-up object would leave Q32.32 only a few bits in d.d. */
+    rt_real len = rt_v3_length(d);
+    if (!(len > RT_ZERO)) return false;
+    rt_vec3 unit = rt_v3_scale(d, rt_div(RT_ONE, len));
+    rt_real t_min = rt_mul(rs->ray.t_min, len), t_max = rt_mul(rs->ray.t_max, len);
+    bool found = obj->kind == RT_SHAPE_SPHERE ? rt_intersect_sphere(o, unit, t_min, t_max, hit)
+                                              : rt_intersect_cylinder(o, unit, t_min, t_max, hit);
+    if (!found) return false;
+    hit->t = rt_div(hit->t, len);
+    return hit->t > rs->ray.t_min && hit->t < rs->ray.t_max;
+}
+
+/* Inline in the BVH's leaf loop, where a triangle test is most of the work; kx, ky, kz
+ * are rs's axis permutation (see rt_intersect_triangle_axes). */
+__attribute__((always_inline)) static inline bool prim_intersect(const rt_scene *scene, uint32_t prim,
+                                                                 const rt_ray_setup *rs, rt_prim_hit *hit, int kx,
+                                                                 int ky, int kz)
+{
+    if (prim >= scene->triangle_count) return quadric_intersect(scene, prim, rs, hit);
+    const rt_triangle *tri = &scene->triangles[prim];
+    return rt_intersect_triangle_axes(rs, scene->positions[tri->v[0]], scene->positions[tri->v[1]],
+                                      scene->positions[tri->v[2]], hit, kx, ky, kz);
+}
+
+/* Keeps prim's hit in *best if it is nearer, or as near and a lower reference; returns
+ * whether it did. */
+__attribute__((always_inline)) static inline bool consider(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs,
+                                                           rt_scene_hit *best, bool *found, int kx, int ky, int kz)
+{
+    rt_prim_hit h;
+    if (!prim_intersect(scene, prim, rs, &h, kx, ky, kz)) return false;
+    if (*found && (h.t > best->hit.t || (h.t == best->hit.t && prim > best->prim))) return false;
+    best->hit = h;
+    best->prim = prim;
+    *found = true;
+    return true;
+}
+
+#if !defined(RT_REAL_FIXED) && defined(__GNUC__)
+#define EDGE_PAIRS 1
+typedef double pair_d __attribute__((vector_size(16)));
+typedef double pair_d_load __attribute__((vector_size(16), aligned(8), may_alias));
+typedef int64_t pair_i __attribute__((vector_size(16)));
+#ifdef __clang__
+#define PAIR_SHUFFLE(a, b, i, j) __builtin_shufflevector(a, b, i, j)
+#else
+#define PAIR_SHUFFLE(a, b, i, j) __builtin_shuffle(a, b, (pair_i){i, j})
+#endif
+
+/* Vertex v of triangles t0 and t1 relative to the origin o, a coordinate per vector:
+ * out[k] holds coordinate k of both. */
+__attribute__((always_inline)) static inline void pair_vertex(const rt_vec3 *p, const rt_triangle *t0,
+                                                              const rt_triangle *t1, int v, rt_vec3 o, pair_d out[3])
+{
+    const rt_vec3 *a = &p[t0->v[v]], *b = &p[t1->v[v]];
+    pair_d xy_a = *(const pair_d_load *)&a->x, xy_b = *(const pair_d_load *)&b->x;
+    out[0] = PAIR_SHUFFLE(xy_a, xy_b, 0, 2) - o.x;
+    out[1] = PAIR_SHUFFLE(xy_a, xy_b, 1, 3) - o.y;
+    out[2] = (pair_d){a->z, b->z} - o.z;
+}
+
+/* Which of the triangles refs[0], refs[1] the watertight test may hit (bits 0, 1): their
+ * edge functions u, v, w by the operations of rt_intersect_triangle_axes, one triangle
+ * per lane, so a triangle rejected here for signs on both sides is one that test rejects. */
+__attribute__((always_inline)) static inline unsigned edge_pair(const rt_scene *scene, const uint32_t *refs,
+                                                                const rt_ray_setup *rs, int kx, int ky, int kz)
+{
+    const rt_triangle *t0 = &scene->triangles[refs[0]], *t1 = &scene->triangles[refs[1]];
+    pair_d pa[3], pb[3], pc[3];
+    pair_vertex(scene->positions, t0, t1, 0, rs->ray.origin, pa);
+    pair_vertex(scene->positions, t0, t1, 1, rs->ray.origin, pb);
+    pair_vertex(scene->positions, t0, t1, 2, rs->ray.origin, pc);
+    pair_d ax = pa[kx] - rs->sx * pa[kz], ay = pa[ky] - rs->sy * pa[kz];
+    pair_d bx = pb[kx] - rs->sx * pb[kz], by = pb[ky] - rs->sy * pb[kz];
+    pair_d cx = pc[kx] - rs->sx * pc[kz], cy = pc[ky] - rs->sy * pc[kz];
+    pair_d u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax, zero = {0.0, 0.0};
+    pair_i outside = ((u < zero) | (v < zero) | (w < zero)) & ((u > zero) | (v > zero) | (w > zero));
+    return (unsigned)(outside[0] == 0) | (unsigned)(outside[1] == 0) << 1;
+}
+#else
+#define EDGE_PAIRS 0
+#endif
+
+__attribute__((always_inline)) static inline bool leaf_loop(const rt_scene *scene, uint32_t first, uint32_t count,
+                                                            const rt_ray_setup *rs, bool any, rt_scene_hit *best,
+                                                            bool *found, int kx, int ky, int kz)
+{
+    const uint32_t *refs = scene->bvh.prim_refs;
+    uint32_t i = first, end = first + count;
+#if EDGE_PAIRS
+    for (; i + 2 <= end; i += 2) {
+        unsigned maybe = 3; /* spheres and cylinders take their own test */
+        if (refs[i] < scene->triangle_count && refs[i + 1] < scene->triangle_count)
+            maybe = edge_pair(scene, refs + i, rs, kx, ky, kz);
+        if (maybe & 1) consider(scene, refs[i], rs, best, found, kx, ky, kz);
+        if (any && *found) return true;
+        if (maybe & 2) consider(scene, refs[i + 1], rs, best, found, kx, ky, kz);
+        if (any && *found) return true;
+    }
+#endif
+    for (; i < end; i++) {
+        consider(scene, refs[i], rs, best, found, kx, ky, kz);
+        if (any && *found) break;
+    }
+    return *found;
+}
+
+/* The references prim_refs[first .. first + count), out of line so that the traversal
+ * loop keeps its registers, with one copy of the loop per axis permutation; with `any`,
+ * stops at the first hit. Returns *found. */
+__attribute__((noinline, unused)) static bool visit_leaf(const rt_scene *scene, uint32_t first, uint32_t count,
+                                                         const rt_ray_setup *rs, bool any, rt_scene_hit *best,
+                                                         bool *found)
+{
+    bool swapped = rs->kx != (rs->kz + 1) % 3; /* see rt_intersect_prepare */
+    switch (rs->kz * 2 + swapped) {
+    case 0: return leaf_loop(scene, first, count, rs, any, best, found, 1, 2, 0);
+    case 1: return leaf_loop(scene, first, count, rs, any, best, found, 2, 1, 0);
+    case 2: return leaf_loop(scene, first, count, rs, any, best, found, 2, 0, 1);
+    case 3: return leaf_loop(scene, first, count, rs, any, best, found, 0, 2, 1);
+    case 4: return leaf_loop(scene, first, count, rs, any, best, found, 0, 1, 2);
+    default: return leaf_loop(scene, first, count, rs, any, best, found, 1, 0, 2);
+    }
+}
+
+#endif

@@ -1,0 +1,344 @@
+/* A packet of up to RT_PACKET rays walked through the BVH together (the double build on
+ * x86). Each node's children are tested for all the packet's rays at once, one ray per
+ * lane, with each ray's conservative float bounds (bvh_float.h); each triangle of a leaf
+ * gets the watertight test (rt_intersect_triangle_axes) for all the rays at once, one
+ * ray per double lane, with exactly the scalar test's operations in the same order, and
+ * its hits go through the tie rule one ray at a time. So every ray gets exactly what
+ * rt_scene_nearest (or rt_scene_any) gives it alone. The rays of a packet share their
+ * direction's octant and axis permutation (bvh_stream.c groups them).
+ *
+ * A template: the including file defines PACKET_VEC (vector bytes: 16 for SSE2, 32 for
+ * AVX2), PACKET_TARGET (a function attribute, possibly empty) and PACKET_WALK (the name
+ * of the entry point), after including bvh_float.h. */
+
+#define PACKET_LANES_F (PACKET_VEC / 4)        /* floats per vector */
+#define PACKET_LANES_D (PACKET_VEC / 8)        /* doubles per vector */
+#define PACKET_NF (RT_PACKET / PACKET_LANES_F) /* float vectors per packet quantity */
+#define PACKET_ND (RT_PACKET / PACKET_LANES_D) /* double vectors per packet quantity */
+
+typedef float pk_f __attribute__((vector_size(PACKET_VEC)));
+typedef int32_t pk_i __attribute__((vector_size(PACKET_VEC)));
+typedef double pk_d __attribute__((vector_size(PACKET_VEC)));
+typedef int64_t pk_l __attribute__((vector_size(PACKET_VEC)));
+
+#if PACKET_VEC == 32
+#define PK_MAXF __builtin_ia32_maxps256
+#define PK_MINF __builtin_ia32_minps256
+#define PK_MASKF(x) ((unsigned)__builtin_ia32_movmskps256((pk_f)(x)))
+#define PK_MASKD(x) ((unsigned)__builtin_ia32_movmskpd256((pk_d)(x)))
+#define PK_ALLF(x) ((pk_f){x, x, x, x, x, x, x, x})
+#define PK_ALLD(x) ((pk_d){x, x, x, x})
+#else
+#define PK_MAXF __builtin_ia32_maxps
+#define PK_MINF __builtin_ia32_minps
+#define PK_MASKF(x) ((unsigned)__builtin_ia32_movmskps((pk_f)(x)))
+#define PK_MASKD(x) ((unsigned)__builtin_ia32_movmskpd((pk_d)(x)))
+#define PK_ALLF(x) ((pk_f){x, x, x, x})
+#define PK_ALLD(x) ((pk_d){x, x})
+#endif
+#ifdef __clang__
+#define PK_SHUFFLE(a, ...) __builtin_shufflevector(a, a, __VA_ARGS__)
+#else
+#define PK_SHUFFLE(a, ...) __builtin_shuffle(a, (pk_i){__VA_ARGS__})
+#endif
+
+/* The packet: each quantity as PACKET_NF float (or PACKET_ND double) vectors, lane l of
+ * the packet in lane l % lanes of vector l / lanes. */
+typedef struct {
+    pk_f o_near[3][PACKET_NF], o_far[3][PACKET_NF], inv_near[3][PACKET_NF], inv_far[3][PACKET_NF];
+    pk_f t_min_f[PACKET_NF], best[PACKET_NF]; /* best: the t each ray's boxes are tested against */
+    pk_d origin[3][PACKET_ND], sx[PACKET_ND], sy[PACKET_ND], sz[PACKET_ND], t_min[PACKET_ND], t_max[PACKET_ND];
+    size_t near[3], far[3]; /* byte offsets of each axis' near and far row of rt_bvh_node.box */
+    int kx, ky, kz;
+} pk_packet;
+
+/* A child waiting to be visited by the rays in `mask`, each entering its box at or after t. */
+typedef struct {
+    uint32_t child, count, mask;
+    pk_f t[PACKET_NF];
+} pk_entry;
+
+/* The smallest of the lanes of v where `in` is set (+infinity for none). */
+__attribute__((always_inline)) static inline PACKET_TARGET float pk_min(pk_f v, pk_i in)
+{
+    const pk_f inf = PK_ALLF(__builtin_inff());
+    v = (pk_f)(((pk_i)v & in) | ((pk_i)inf & ~in));
+#if PACKET_VEC == 32
+    v = PK_MINF(v, PK_SHUFFLE(v, 4, 5, 6, 7, 0, 1, 2, 3));
+    v = PK_MINF(v, PK_SHUFFLE(v, 2, 3, 0, 1, 6, 7, 4, 5));
+    v = PK_MINF(v, PK_SHUFFLE(v, 1, 0, 3, 2, 5, 4, 7, 6));
+#else
+    v = PK_MINF(v, PK_SHUFFLE(v, 2, 3, 0, 1));
+    v = PK_MINF(v, PK_SHUFFLE(v, 1, 0, 3, 2));
+#endif
+    return v[0];
+}
+
+/* Tests child c of `node` for the packet's rays: returns the lanes that enter its box,
+ * with their entry distances (bounded from below) in t and the lanes' test in in. */
+__attribute__((always_inline)) static inline PACKET_TARGET unsigned pk_child(const pk_packet *p,
+                                                                             const rt_bvh_node *node, int c,
+                                                                             pk_f t[PACKET_NF], pk_i in[PACKET_NF])
+{
+    const char *b = (const char *)node->box;
+    pk_f nx = PK_ALLF(((const float *)(b + p->near[0]))[c]), ny = PK_ALLF(((const float *)(b + p->near[1]))[c]);
+    pk_f nz = PK_ALLF(((const float *)(b + p->near[2]))[c]), fx = PK_ALLF(((const float *)(b + p->far[0]))[c]);
+    pk_f fy = PK_ALLF(((const float *)(b + p->far[1]))[c]), fz = PK_ALLF(((const float *)(b + p->far[2]))[c]);
+    unsigned hits = 0;
+    for (int v = 0; v < PACKET_NF; v++) {
+        pk_f t0 = PK_MAXF(p->t_min_f[v], (nx - p->o_near[0][v]) * p->inv_near[0][v]);
+        pk_f t1 = PK_MINF(p->best[v], (fx - p->o_far[0][v]) * p->inv_far[0][v]);
+        t0 = PK_MAXF(t0, (ny - p->o_near[1][v]) * p->inv_near[1][v]);
+        t1 = PK_MINF(t1, (fy - p->o_far[1][v]) * p->inv_far[1][v]);
+        t0 = PK_MAXF(t0, (nz - p->o_near[2][v]) * p->inv_near[2][v]);
+        t1 = PK_MINF(t1, (fz - p->o_far[2][v]) * p->inv_far[2][v]);
+        in[v] = t0 <= t1;
+        t[v] = t0;
+        hits |= PK_MASKF(in[v]) << (v * PACKET_LANES_F);
+    }
+    return hits;
+}
+
+/* The smallest entry distance of the lanes that enter a child: the order of children. */
+__attribute__((always_inline)) static inline PACKET_TARGET float pk_first(const pk_f t[PACKET_NF],
+                                                                          const pk_i in[PACKET_NF])
+{
+    float m = pk_min(t[0], in[0]);
+    for (int v = 1; v < PACKET_NF; v++) {
+        float x = pk_min(t[v], in[v]);
+        if (x < m) m = x;
+    }
+    return m;
+}
+
+/* (a < 0 ? -a : a) lane by lane, as rt_abs does it (so -0 stays -0). */
+__attribute__((always_inline)) static inline PACKET_TARGET pk_d pk_abs(pk_d a)
+{
+    pk_l neg = a < PK_ALLD(0.0);
+    return (pk_d)(((pk_l)-a & neg) | ((pk_l)a & ~neg));
+}
+
+/* The watertight test of one triangle (vertices a, b, c) for the rays in mask, each lane
+ * by rt_intersect_triangle_axes's operations; every hit goes through the tie rule of
+ * `consider` for its ray. Returns the lanes whose nearest hit changed. */
+__attribute__((always_inline)) static inline PACKET_TARGET unsigned pk_triangle(const pk_packet *p, uint32_t prim,
+                                                                                const rt_vec3 *va, const rt_vec3 *vb,
+                                                                                const rt_vec3 *vc, unsigned mask,
+                                                                                rt_scene_hit *out, bool *found, int kx,
+                                                                                int ky, int kz)
+{
+    const rt_real a[3] = {va->x, va->y, va->z}, b[3] = {vb->x, vb->y, vb->z}, c[3] = {vc->x, vc->y, vc->z};
+    const pk_d zero = PK_ALLD(0.0);
+    unsigned improved = 0;
+    for (int v = 0; v < PACKET_ND; v++) {
+        unsigned lanes = mask >> (v * PACKET_LANES_D) & ((1u << PACKET_LANES_D) - 1);
+        if (!lanes) continue;
+        pk_d az = PK_ALLD(a[kz]) - p->origin[kz][v], bz = PK_ALLD(b[kz]) - p->origin[kz][v];
+        pk_d cz = PK_ALLD(c[kz]) - p->origin[kz][v];
+        pk_d ax = (PK_ALLD(a[kx]) - p->origin[kx][v]) - p->sx[v] * az;
+        pk_d ay = (PK_ALLD(a[ky]) - p->origin[ky][v]) - p->sy[v] * az;
+        pk_d bx = (PK_ALLD(b[kx]) - p->origin[kx][v]) - p->sx[v] * bz;
+        pk_d by = (PK_ALLD(b[ky]) - p->origin[ky][v]) - p->sy[v] * bz;
+        pk_d cx = (PK_ALLD(c[kx]) - p->origin[kx][v]) - p->sx[v] * cz;
+        pk_d cy = (PK_ALLD(c[ky]) - p->origin[ky][v]) - p->sy[v] * cz;
+        pk_d u = cx * by - cy * bx, vv = ax * cy - ay * cx, w = bx * ay - by * ax;
+        pk_l outside = ((u < zero) | (vv < zero) | (w < zero)) & ((u > zero) | (vv > zero) | (w > zero));
+        lanes &= ~PK_MASKD(outside);
+        if (!lanes) continue;
+        pk_d det = (u + vv) + w;
+        pk_d extent_x = (pk_abs(ax) + pk_abs(bx)) + pk_abs(cx), extent_y = (pk_abs(ay) + pk_abs(by)) + pk_abs(cy);
+        pk_d t = ((u * (p->sz[v] * az) + vv * (p->sz[v] * bz)) + w * (p->sz[v] * cz)) / det;
+        pk_l edge_on = pk_abs(det) <= (extent_x * extent_y) * PK_ALLD(1e-12);
+        pk_l inside = (t > p->t_min[v]) & (t < p->t_max[v]) & (t - t == zero);
+        lanes &= PK_MASKD(inside & ~edge_on);
+        if (!lanes) continue;
+        pk_d b1 = vv / det, b2 = w / det;
+        for (; lanes; lanes &= lanes - 1) {
+            int i = __builtin_ctz(lanes), l = v * PACKET_LANES_D + i;
+            rt_scene_hit *best = &out[l];
+            if (found[l] && (t[i] > best->hit.t || (t[i] == best->hit.t && prim > best->prim))) continue;
+            best->hit.t = t[i];
+            best->hit.b1 = b1[i];
+            best->hit.b2 = b2[i];
+            best->hit.part = RT_PART_SURFACE;
+            best->prim = prim;
+            found[l] = true;
+            improved |= 1u << l;
+        }
+    }
+    return improved;
+}
+
+/* The references of a leaf for the rays in mask; returns the lanes whose nearest hit
+ * changed. With `any`, a lane stops at its first hit. */
+__attribute__((always_inline)) static inline PACKET_TARGET unsigned pk_leaf_loop(
+    const rt_scene *scene, const pk_packet *p, const rt_ray_setup *const *rs, uint32_t first, uint32_t count,
+    unsigned mask, bool any, rt_scene_hit *out, bool *found, int kx, int ky, int kz)
+{
+    const uint32_t *refs = scene->bvh.prim_refs;
+    unsigned improved = 0;
+    for (uint32_t i = first; i < first + count && mask; i++) {
+        uint32_t prim = refs[i];
+        unsigned got = 0;
+        if (prim < scene->triangle_count) {
+            const rt_triangle *tri = &scene->triangles[prim];
+            got = pk_triangle(p, prim, &scene->positions[tri->v[0]], &scene->positions[tri->v[1]],
+                              &scene->positions[tri->v[2]], mask, out, found, kx, ky, kz);
+        } else {
+            for (unsigned m = mask; m; m &= m - 1) {
+                int l = __builtin_ctz(m);
+                if (consider(scene, prim, rs[l], &out[l], &found[l], kx, ky, kz)) got |= 1u << l;
+            }
+        }
+        improved |= got;
+        if (any) mask &= ~got;
+    }
+    return improved;
+}
+
+__attribute__((noinline)) static PACKET_TARGET unsigned pk_leaf(const rt_scene *scene, const pk_packet *p,
+                                                                const rt_ray_setup *const *rs, uint32_t first,
+                                                                uint32_t count, unsigned mask, bool any,
+                                                                rt_scene_hit *out, bool *found)
+{
+    switch (p->kz * 2 + (p->kx != (p->kz + 1) % 3)) {
+    case 0: return pk_leaf_loop(scene, p, rs, first, count, mask, any, out, found, 1, 2, 0);
+    case 1: return pk_leaf_loop(scene, p, rs, first, count, mask, any, out, found, 2, 1, 0);
+    case 2: return pk_leaf_loop(scene, p, rs, first, count, mask, any, out, found, 2, 0, 1);
+    case 3: return pk_leaf_loop(scene, p, rs, first, count, mask, any, out, found, 0, 2, 1);
+    case 4: return pk_leaf_loop(scene, p, rs, first, count, mask, any, out, found, 0, 1, 2);
+    default: return pk_leaf_loop(scene, p, rs, first, count, mask, any, out, found, 1, 0, 2);
+    }
+}
+
+/* Fills the packet from the n <= RT_PACKET rays (one octant and permutation); lanes from
+ * n on repeat ray 0. Returns the lanes the float bounds can take (float_slab_prepare,
+ * with its roundings, lane by lane). */
+static PACKET_TARGET unsigned pk_fill(pk_packet *p, const rt_ray_setup *const *rs, uint32_t n, rt_real extent)
+{
+    pk_d o[3][PACKET_ND], inv[3][PACKET_ND];
+    for (int l = 0; l < RT_PACKET; l++) {
+        const rt_ray_setup *r = rs[(uint32_t)l < n ? (uint32_t)l : 0];
+        int v = l / PACKET_LANES_D, i = l % PACKET_LANES_D;
+        o[0][v][i] = r->ray.origin.x, o[1][v][i] = r->ray.origin.y, o[2][v][i] = r->ray.origin.z;
+        inv[0][v][i] = r->inv_direction.x, inv[1][v][i] = r->inv_direction.y, inv[2][v][i] = r->inv_direction.z;
+        p->sx[v][i] = r->sx, p->sy[v][i] = r->sy, p->sz[v][i] = r->sz;
+        p->t_min[v][i] = r->ray.t_min, p->t_max[v][i] = r->ray.t_max;
+    }
+    const pk_d small = PK_ALLD(0x1p-100), large = PK_ALLD(0x1p100), reach = PK_ALLD(0x1p120), ext = PK_ALLD(extent);
+    const pk_d step = PK_ALLD(0x1p-23), tiny = PK_ALLD(0x1p-126), zero = PK_ALLD(0.0);
+    unsigned usable = 0;
+    float on[3][RT_PACKET], of[3][RT_PACKET], in[3][RT_PACKET], ifar[3][RT_PACKET], tmin[RT_PACKET], tmax[RT_PACKET];
+    for (int v = 0; v < PACKET_ND; v++) {
+        pk_l ok = (p->t_min[v] >= small) & (p->t_min[v] <= large);
+        for (int k = 0; k < 3; k++) {
+            pk_d mag = pk_abs(inv[k][v]), o_mag = pk_abs(o[k][v]);
+            ok &= (mag >= small) & (mag <= large) & (o_mag <= large) & ((ext + o_mag) * mag <= reach);
+            pk_d pad = o_mag * step + tiny, up = o[k][v] + pad, down = o[k][v] - pad;
+            pk_l pos = inv[k][v] > zero;
+            pk_d near = (pk_d)(((pk_l)up & pos) | ((pk_l)down & ~pos)),
+                 far = (pk_d)(((pk_l)down & pos) | ((pk_l)up & ~pos));
+            pk_d shrink = inv[k][v] * PK_ALLD(1.0 - 0x1p-21), grow = inv[k][v] * PK_ALLD(1.0 + 0x1p-21);
+            for (int i = 0; i < PACKET_LANES_D; i++) {
+                int l = v * PACKET_LANES_D + i;
+                on[k][l] = (float)near[i], of[k][l] = (float)far[i], in[k][l] = (float)shrink[i],
+                ifar[k][l] = (float)grow[i];
+            }
+        }
+        pk_d t_lo = p->t_min[v] - (pk_abs(p->t_min[v]) * step + tiny),
+             t_hi = p->t_max[v] + (pk_abs(p->t_max[v]) * step + tiny);
+        for (int i = 0; i < PACKET_LANES_D; i++) {
+            tmin[v * PACKET_LANES_D + i] = (float)t_lo[i];
+            tmax[v * PACKET_LANES_D + i] = (float)t_hi[i];
+        }
+        usable |= PK_MASKD(ok) << (v * PACKET_LANES_D);
+    }
+    for (int v = 0; v < PACKET_NF; v++) {
+        for (int k = 0; k < 3; k++) {
+            __builtin_memcpy(&p->o_near[k][v], &on[k][v * PACKET_LANES_F], sizeof(pk_f));
+            __builtin_memcpy(&p->o_far[k][v], &of[k][v * PACKET_LANES_F], sizeof(pk_f));
+            __builtin_memcpy(&p->inv_near[k][v], &in[k][v * PACKET_LANES_F], sizeof(pk_f));
+            __builtin_memcpy(&p->inv_far[k][v], &ifar[k][v * PACKET_LANES_F], sizeof(pk_f));
+        }
+        __builtin_memcpy(&p->t_min_f[v], &tmin[v * PACKET_LANES_F], sizeof(pk_f));
+        __builtin_memcpy(&p->best[v], &tmax[v * PACKET_LANES_F], sizeof(pk_f));
+    }
+    for (int k = 0; k < 3; k++)
+        for (int v = 0; v < PACKET_ND; v++) p->origin[k][v] = o[k][v];
+    rt_vec3 d = rs[0]->ray.direction;
+    const size_t row = sizeof((const rt_bvh_node *)0)->box[0];
+    p->near[0] = d.x < 0 ? 3 * row : 0, p->near[1] = d.y < 0 ? 4 * row : row, p->near[2] = d.z < 0 ? 5 * row : 2 * row;
+    p->far[0] = d.x < 0 ? 0 : 3 * row, p->far[1] = d.y < 0 ? row : 4 * row, p->far[2] = d.z < 0 ? 2 * row : 5 * row;
+    p->kx = rs[0]->kx, p->ky = rs[0]->ky, p->kz = rs[0]->kz;
+    return usable & (n >= 32 ? ~0u : (1u << n) - 1);
+}
+
+/* Each wide level pushes at most RT_BVH_WIDTH - 1 children. */
+#define PK_STACK (RT_BVH_MAX_DEPTH * (RT_BVH_WIDTH - 1) + 1)
+
+/* rt_scene_nearest (any: rt_scene_any) for each of the n <= RT_PACKET rays rs[i] (one
+ * octant and permutation) into out[i] and found[i] (false on entry), for the rays the
+ * float bounds can take; returns those. */
+PACKET_TARGET unsigned PACKET_WALK(const rt_scene *scene, const rt_ray_setup *const *rs, uint32_t n, bool any,
+                                   rt_scene_hit *out, bool *found)
+{
+    pk_packet p;
+    unsigned alive = pk_fill(&p, rs, n, scene->bvh.extent), taken = alive;
+    const rt_bvh_node *nodes = scene->bvh.nodes;
+    pk_entry stack[PK_STACK];
+    uint32_t top = 0, child = 0, count = 0, mask = alive;
+    if (!alive) return 0;
+    for (;;) {
+        while (count == 0) {
+            const rt_bvh_node *node = &nodes[child];
+            pk_f t[RT_BVH_WIDTH][PACKET_NF];
+            pk_i in[RT_BVH_WIDTH][PACKET_NF];
+            unsigned hits[RT_BVH_WIDTH];
+            int order[RT_BVH_WIDTH], n_hit = 0; /* the hit children, nearest first */
+            for (int c = 0; c < RT_BVH_WIDTH; c++) {
+                hits[c] = pk_child(&p, node, c, t[c], in[c]) & mask;
+                if (hits[c]) order[n_hit++] = c;
+            }
+            if (!n_hit) goto pop;
+            if (n_hit > 1) {
+                float first[RT_BVH_WIDTH];
+                for (int i = 0; i < n_hit; i++) first[order[i]] = pk_first(t[order[i]], in[order[i]]);
+                for (int i = 1; i < n_hit; i++) {
+                    int c = order[i], j = i;
+                    for (; j > 0 && first[order[j - 1]] > first[c]; j--) order[j] = order[j - 1];
+                    order[j] = c;
+                }
+            }
+            for (int i = n_hit - 1; i > 0; i--) {
+                pk_entry *e = &stack[top++];
+                int c = order[i];
+                e->child = node->child[c], e->count = node->count[c], e->mask = hits[c];
+                for (int v = 0; v < PACKET_NF; v++) e->t[v] = t[c][v];
+            }
+            child = node->child[order[0]], count = node->count[order[0]], mask = hits[order[0]];
+        }
+        {
+            unsigned improved = pk_leaf(scene, &p, rs, child, count, mask, any, out, found);
+            if (any) {
+                alive &= ~improved;
+                if (!alive) return taken;
+            } else {
+                for (; improved; improved &= improved - 1) {
+                    int l = __builtin_ctz(improved);
+                    p.best[l / PACKET_LANES_F][l % PACKET_LANES_F] = float_outward(out[l].hit.t, true);
+                }
+            }
+        }
+    pop:
+        for (;;) {
+            if (top == 0) return taken;
+            pk_entry *e = &stack[--top];
+            unsigned live = 0;
+            for (int v = 0; v < PACKET_NF; v++) live |= PK_MASKF(e->t[v] <= p.best[v]) << (v * PACKET_LANES_F);
+            mask = e->mask & live & alive;
+            if (!mask) continue;
+            child = e->child, count = e->count;
+            break;
+        }
+    }
+}

@@ -1,0 +1,118 @@
+/* Whitted renders with a constant sample count, traced in packets: a group of pixels'
+ * camera rays go through the stream query together, then the shadow rays of their hits,
+ * light by light; then each sample is traced as rt_trace traces it, with those first
+ * queries' results handed in (rt_primed). The stream queries give every ray exactly
+ * what the one-ray queries give it, and a pixel sums its samples in the same order as
+ * rt_render_pixel, so the image is the same bytes. See render_packet.h. */
+#include "render_packet.h"
+#include "bvh.h"
+
+#include "shading.h"
+
+/* Pixels are taken in groups of GROUP_W x GROUP_H (packets of neighbours), each pixel's
+ * samples in order; BATCH samples are traced together. */
+#define GROUP_W 8
+#define GROUP_H 8
+#define BATCH 64
+
+bool rt_render_packets_apply(const rt_tracer *tr)
+{
+    const rt_trace_settings *set = &tr->scene->camera.trace;
+    return tr->use_bvh && !tr->log && !tr->primed && set->monte_carlo == 0 && set->sample_count_type == 0 &&
+           rt_bvh_packets(&tr->scene->bvh);
+}
+
+typedef struct {
+    uint32_t pixel, sample; /* pixel: index in the group */
+} sample_ref;
+
+/* The colours of n <= BATCH samples, each as rt_trace gives it. */
+static void trace_batch(const rt_tracer *tr, const uint32_t *col, const uint32_t *row, const sample_ref *s, uint32_t n,
+                        rt_vec3 *color)
+{
+    const rt_scene *scene = tr->scene;
+    rt_ray ray[BATCH];
+    rt_ray_setup rs[BATCH], shadow[BATCH];
+    rt_scene_hit shadow_hit[BATCH];
+    bool found[BATCH];
+    uint32_t owner[BATCH];
+    rt_primed primed[BATCH];
+    rt_shading_point p[BATCH];
+    rt_tracer with = *tr;
+    if (n == 0) return;
+    for (uint32_t i = 0; i < n; i++) {
+        ray[i] = rt_camera_pixel_ray(&scene->camera, col[s[i].pixel], row[s[i].pixel], s[i].sample);
+        rs[i] = rt_intersect_prepare(ray[i]);
+    }
+    rt_scene_hit hit[BATCH];
+    rt_scene_nearest_stream(scene, rs, n, hit, found);
+    for (uint32_t i = 0; i < n; i++) {
+        primed[i].found = found[i];
+        primed[i].hit = hit[i];
+        for (int l = 0; l < RT_PRIMED_LIGHTS; l++) primed[i].shadow[l] = 0;
+        /* The shading point as the trace will make it (no query: the hit is known). */
+        with.primed = &primed[i];
+        if (found[i]) rt_shading_hit(&with, &ray[i], RT_RAY_CAMERA, RT_NO_PARENT, 0, &p[i]);
+    }
+    uint32_t lights = scene->light_count < RT_PRIMED_LIGHTS ? scene->light_count : RT_PRIMED_LIGHTS;
+    bool opaque = scene->camera.trace.shadows == 1;
+    for (uint32_t l = 0; l < lights; l++) {
+        uint32_t m = 0;
+        for (uint32_t i = 0; i < n; i++) {
+            rt_ray r;
+            if (!found[i] || !rt_shading_shadow_ray(tr, l, &p[i], scene->lights[l].position, &r)) continue;
+            shadow[m] = rt_intersect_prepare(r);
+            owner[m++] = i;
+        }
+        bool blocked[BATCH];
+        if (opaque)
+            rt_scene_any_stream(scene, shadow, m, blocked);
+        else
+            rt_scene_nearest_stream(scene, shadow, m, shadow_hit, blocked);
+        for (uint32_t j = 0; j < m; j++) {
+            primed[owner[j]].shadow[l] = blocked[j] ? 2 : 1;
+            if (blocked[j] && !opaque) primed[owner[j]].shadow_hit[l] = shadow_hit[j];
+        }
+    }
+    for (uint32_t i = 0; i < n; i++) {
+        with.primed = &primed[i];
+        color[i] = rt_trace(&with, ray[i], 0);
+    }
+}
+
+void rt_render_rect_packets(const rt_tracer *tr, rt_rect area, rt_rect held, uint8_t *rgb)
+{
+    const rt_camera *cam = &tr->scene->camera;
+    uint32_t x0 = area.x0, y0 = area.y0, x1 = area.x1, y1 = area.y1, held_width = held.x1 - held.x0;
+    uint32_t spp = rt_camera_samples(cam);
+    for (uint32_t gy = y0; gy < y1; gy += GROUP_H)
+        for (uint32_t gx = x0; gx < x1; gx += GROUP_W) {
+            /* The group's pixels, in blocks of 4 x 2 so that neighbours share a packet. */
+            uint32_t col[GROUP_W * GROUP_H], row[GROUP_W * GROUP_H], pixels = 0;
+            for (uint32_t by = gy; by < gy + GROUP_H && by < y1; by += 2)
+                for (uint32_t bx = gx; bx < gx + GROUP_W && bx < x1; bx += 4)
+                    for (uint32_t y = by; y < by + 2 && y < y1; y++)
+                        for (uint32_t x = bx; x < bx + 4 && x < x1; x++) col[pixels] = x, row[pixels++] = y;
+            rt_vec3 sum[GROUP_W * GROUP_H];
+            for (uint32_t i = 0; i < pixels; i++) sum[i] = rt_v3(RT_ZERO, RT_ZERO, RT_ZERO);
+            /* Samples pixel by pixel, each pixel's in order, BATCH at a time. */
+            sample_ref batch[BATCH];
+            rt_vec3 color[BATCH];
+            uint32_t n = 0;
+            for (uint32_t i = 0; i < pixels; i++)
+                for (uint32_t k = 0; k < spp; k++) {
+                    batch[n++] = (sample_ref){i, k};
+                    if (n < BATCH && !(i == pixels - 1 && k == spp - 1)) continue;
+                    trace_batch(tr, col, row, batch, n, color);
+                    for (uint32_t j = 0; j < n; j++) sum[batch[j].pixel] = rt_v3_add(sum[batch[j].pixel], color[j]);
+                    n = 0;
+                }
+            for (uint32_t i = 0; i < pixels; i++) {
+                rt_vec3 c = spp == 1 ? sum[i] : rt_v3_div(sum[i], rt_from_int(spp));
+                uint8_t *px = rgb + ((size_t)(row[i] - held.y0) * held_width + (col[i] - held.x0)) * 3;
+                px[0] = rt_render_color_byte(c.x);
+                px[1] = rt_render_color_byte(c.y);
+                px[2] = rt_render_color_byte(c.z);
+            }
+        }
+}

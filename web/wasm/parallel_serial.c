@@ -1,0 +1,41 @@
+/* platform/thread/threads.h for WebAssembly, where wasi-libc has no threads: one worker, the
+ * calling thread. The browser spreads a render over Web Workers instead (web/app). */
+#include "thread/threads.h"
+
+uint32_t rtp_threads_count(uint32_t requested)
+{
+    (void)requested;
+    return 1;
+}
+
+static void run_in_order(const rt_workers *w, rt_job_fn *fn, void *arg, uint32_t jobs)
+{
+    (void)w;
+    for (uint32_t i = 0; i < jobs; i++) fn(arg, i, 0);
+}
+
+rt_workers rtp_threads_workers(uint32_t threads)
+{
+    (void)threads;
+    rt_workers w = {1, run_in_order};
+    return w;
+}
+
+bool rtp_threads_render(const rt_tracer *tr, const rtp_threads_options *opt, uint8_t *rgb)
+{
+    const rt_camera *cam = &tr->scene->camera;
+    return rtp_threads_render_region(tr, opt, (rt_rect){0, 0, cam->width, cam->height}, rgb);
+}
+
+bool rtp_threads_render_region(const rt_tracer *tr, const rtp_threads_options *opt, rt_rect region, uint8_t *rgb)
+{
+    uint32_t tile = opt->tile_size ? opt->tile_size : 32;
+    for (uint32_t y0 = region.y0; y0 < region.y1; y0 += tile)
+        for (uint32_t x0 = region.x0; x0 < region.x1; x0 += tile) {
+            if (opt->cancel && *opt->cancel) return false;
+            uint32_t x1 = region.x1 - x0 > tile ? x0 + tile : region.x1;
+            uint32_t y1 = region.y1 - y0 > tile ? y0 + tile : region.y1;
+            rt_render_rect(tr, (rt_rect){x0, y0, x1, y1}, region, rgb);
+        }
+    return true;
+}
