@@ -5,6 +5,7 @@
  * convergence as 1/sqrt(spp), the energy bound, the sample count types, the thin lens,
  * and independence from tiles and threads. */
 #include "area_light.h"
+#include "builtin_mesh.h"
 #include "cli/cli.h"
 #include "load/scene_open.h"
 #include "path_trace.h"
@@ -462,8 +463,8 @@ Test(montecarlo, glossy_rays_sample_the_blinn_phong_lobe)
     build(&d, &b);
     static rt_ray_record rays[1 << 12];
     static rt_light_record lights[1 << 12];
-    rt_ray_log log = {rays, 0, 1 << 12, lights, 0, 1 << 12, false};
-    rt_tracer tr = {&b.scene, true, &log};
+    rt_ray_log log = {.rays = rays, .ray_capacity = 1 << 12, .lights = lights, .light_capacity = 1 << 12};
+    rt_tracer tr = {.scene = &b.scene, .use_bvh = true, .log = &log};
     rt_render_pixel(&tr, 0, 0);
     cr_assert_not(log.overflow);
     double mean = 0, n = 20;
@@ -575,7 +576,7 @@ Test(montecarlo, no_sample_brighter_than_the_bound)
         }
         bound[ch] = finite_sum(e, w, s->camera.trace.max_depth);
     }
-    rt_tracer tr = {s, true, NULL};
+    rt_tracer tr = {.scene = s, .use_bvh = true};
     uint32_t on_light = 0;
     for (uint32_t y = 0; y < 16; y++)
         for (uint32_t x = 0; x < 16; x++)
