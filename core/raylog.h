@@ -7,14 +7,27 @@
 
 #define RT_NO_PARENT UINT32_MAX
 
-typedef enum { RT_RAY_CAMERA, RT_RAY_REFLECTION, RT_RAY_REFRACTION, RT_RAY_SHADOW, RT_RAY_DIFFUSE } rt_ray_kind;
+/* RT_RAY_GLOSSY: the reflection branch of Monte Carlo mode, about a sampled half vector (§12.1). */
+typedef enum {
+    RT_RAY_CAMERA,
+    RT_RAY_REFLECTION,
+    RT_RAY_REFRACTION,
+    RT_RAY_SHADOW,
+    RT_RAY_DIFFUSE,
+    RT_RAY_GLOSSY
+} rt_ray_kind;
 
 typedef struct {
     rt_ray_kind kind;
     uint32_t parent; /* index of the ray whose hit spawned it, or RT_NO_PARENT */
     uint32_t depth;
-    uint32_t light; /* shadow rays: the light they test */
-    rt_ray ray;
+    uint32_t light; /* shadow rays: the light they test; on_light: the light seen */
+    rt_ray ray;     /* on_light: t_max is where the ray meets the light's square */
+    bool on_light;  /* a Monte Carlo camera ray that ends on an area light's square (§12.1) */
+    /* Glossy rays: the sampled half vector, and whether the direction about it fell
+     * below the surface, so that the ray took the mirror direction instead. */
+    rt_vec3 half_vector;
+    bool mirror_fallback;
     bool hit;
     rt_scene_hit scene_hit;
     rt_surface surface;  /* when hit */
@@ -24,7 +37,8 @@ typedef struct {
     rt_vec3 emissive; /* k_e at the hit */
     /* Shadow rays: the transmittance of the surface crossed (0 for opaque mode). */
     rt_vec3 transmittance;
-    /* What the ray brings back: its colour (shadow rays: the attenuation so far). */
+    /* What the ray brings back: its colour (shadow rays: the attenuation so far; on_light:
+     * the light's emission). */
     rt_vec3 color;
 } rt_ray_record;
 
@@ -37,8 +51,9 @@ typedef struct {
     rt_vec3 diffuse;  /* k_d * N.L (0 when gated) */
     rt_vec3 specular; /* k_s * (N.H)^n_s (0 when gated) */
     rt_real distance_attenuation;
+    rt_real light_cosine; /* an area light's cos(theta_L) in Monte Carlo mode (§12.1); else 1 */
     rt_vec3 shadow_attenuation;
-    rt_vec3 contribution; /* ambient + shadow * A_dist * I_L * (diffuse + specular) */
+    rt_vec3 contribution; /* ambient + shadow * A_dist * cos_L * I_L * (diffuse + specular) */
 } rt_light_record;
 
 typedef struct {

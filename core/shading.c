@@ -1,5 +1,6 @@
 /* Shading shared by both tracers; see shading.h. */
 #include "shading.h"
+#include "area_light.h"
 
 /* The skeleton's refractive index of air (format §10.3). */
 #define RT_AIR_INDEX RT_C(1.0003)
@@ -140,32 +141,35 @@ bool rt_shading_shadow_ray(const rt_tracer *tr, uint32_t index, const rt_shading
     return true;
 }
 
-rt_vec3 rt_shading_light(const rt_tracer *tr, uint32_t index, const rt_shading_point *p, rt_vec3 position, bool emits)
+rt_vec3 rt_shading_light(const rt_tracer *tr, uint32_t index, const rt_shading_point *p, rt_vec3 position,
+                         bool lambertian)
 {
     const rt_light *l = &tr->scene->lights[index];
     rt_vec3 black = rt_v3(RT_ZERO, RT_ZERO, RT_ZERO);
-    rt_light_record rec = {p->ray, index,  rt_v3_mul(p->kd, l->ambient),  RT_ZERO, RT_ZERO, black,
-                           black,  RT_ONE, rt_v3(RT_ONE, RT_ONE, RT_ONE), black};
+    rt_light_record rec = {p->ray, index,  rt_v3_mul(p->kd, l->ambient),  RT_ZERO, RT_ZERO, black, black,
+                           RT_ONE, RT_ONE, rt_v3(RT_ONE, RT_ONE, RT_ONE), black};
     rec.contribution = rec.ambient;
     rt_vec3 to_light;
     rt_real distance;
-    if (!emits) {
-        rt_raylog_light(tr->log, &rec);
-        return rec.contribution;
-    }
     if (!towards_light(l, p, position, &to_light, &distance)) {
         rt_raylog_light(tr->log, &rec);
         return rec.contribution;
     }
-    if (l->kind != RT_LIGHT_DIRECTIONAL) rec.distance_attenuation = distance_attenuation(l, distance);
+    if (l->kind != RT_LIGHT_DIRECTIONAL) {
+        rec.distance_attenuation = distance_attenuation(l, distance);
+        if (lambertian) rec.light_cosine = rt_area_light_cosine(l, to_light);
+    }
     rec.n_dot_l = rt_v3_dot(p->n, to_light);
-    if (rec.n_dot_l > RT_ZERO) {
+    /* Behind a Lambertian emitter (cosine 0) only the ambient term is left. */
+    if (rec.n_dot_l > RT_ZERO && rec.light_cosine > RT_ZERO) {
         rt_vec3 h = rt_v3_normalize(rt_v3_add(to_light, p->v));
         rec.n_dot_h = rt_max(rt_v3_dot(p->n, h), RT_ZERO);
         rec.diffuse = rt_v3_scale(p->kd, rec.n_dot_l);
         rec.specular = rt_v3_scale(p->ks, rt_pow(rec.n_dot_h, rt_max(p->shininess, RT_C(1e-5))));
         rec.shadow_attenuation = shadow_attenuation(tr, p->point, to_light, distance, p->ray, p->depth, index);
-        rt_vec3 light = rt_v3_scale(rt_v3_mul(rec.shadow_attenuation, l->color), rec.distance_attenuation);
+        /* A cosine of exactly 1 (point-like lights) leaves the product unchanged in both builds. */
+        rt_vec3 light = rt_v3_scale(rt_v3_mul(rec.shadow_attenuation, l->color),
+                                    rt_mul(rec.distance_attenuation, rec.light_cosine));
         rec.contribution = rt_v3_add(rec.ambient, rt_v3_mul(light, rt_v3_add(rec.diffuse, rec.specular)));
     }
     rt_raylog_light(tr->log, &rec);

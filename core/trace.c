@@ -14,7 +14,7 @@ static rt_vec3 trace_ray(const rt_tracer *tr, rt_ray ray, uint32_t depth, rt_ray
      * lights at their centre outside Monte Carlo mode. */
     color = p.ke;
     for (uint32_t i = 0; i < scene->light_count; i++)
-        color = rt_v3_add(color, rt_shading_light(tr, i, &p, scene->lights[i].position, true));
+        color = rt_v3_add(color, rt_shading_light(tr, i, &p, scene->lights[i].position, false));
     if (set->reflections && !rt_v3_is_zero(p.ks)) {
         rt_vec3 reflected = trace_ray(tr, rt_ray_make(p.point, rt_shading_mirror(&p), RT_REAL_MAX), depth + 1,
                                       RT_RAY_REFLECTION, p.ray);
