@@ -9,6 +9,7 @@
  * square before any surface brings back the light's emission (§12.1). */
 #include "path_trace.h"
 #include "area_light.h"
+#include "raylog.h"
 #include "shading.h"
 
 typedef struct {
@@ -139,8 +140,8 @@ static rt_vec3 trace_path(const path *pa, const branch *from, rt_ray ray, uint32
         if (rec) {
             rec->on_light = true;
             rec->light = light;
-            rec->color = color;
         }
+        rt_raylog_color(pa->tr->log, p.ray, color);
         return color;
     }
     color = direct(pa, &p, node);
@@ -153,7 +154,7 @@ static rt_vec3 trace_path(const path *pa, const branch *from, rt_ray ray, uint32
                        rt_rng_child(node, b[i].kind), p.ray, after_diffuse || b[i].kind == RT_RAY_DIFFUSE);
         color = rt_v3_add(color, rt_v3_mul(b[i].weight, incoming));
     }
-    if (rec) rec->color = color;
+    rt_raylog_color(pa->tr->log, p.ray, color);
     return color;
 }
 

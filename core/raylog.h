@@ -56,7 +56,7 @@ typedef struct {
     rt_vec3 contribution; /* ambient + shadow * A_dist * cos_L * I_L * (diffuse + specular) */
 } rt_light_record;
 
-typedef struct {
+typedef struct rt_ray_log {
     rt_ray_record *rays;
     uint32_t ray_count, ray_capacity;
     rt_light_record *lights;
@@ -67,8 +67,12 @@ typedef struct {
 /* Recording, for the tracers; each is a no-op when log is NULL. */
 /* Starts a record for a ray; returns its index, or RT_NO_PARENT when not recorded. */
 uint32_t rt_raylog_begin(rt_ray_log *log, rt_ray_kind kind, uint32_t parent, uint32_t depth, const rt_ray *ray);
-/* The record of ray id, or NULL when there is none. */
+/* The record of ray id, or NULL when there is none: for the fields only one tracer sets. */
 rt_ray_record *rt_raylog_ray(rt_ray_log *log, uint32_t id);
+/* Records that ray id hit `hit`, on surface s. */
+void rt_raylog_hit(rt_ray_log *log, uint32_t id, const rt_scene_hit *hit, const rt_surface *s);
+/* Records the colour ray id brings back (a shadow ray: its attenuation so far). */
+void rt_raylog_color(rt_ray_log *log, uint32_t id, rt_vec3 color);
 /* Appends the light terms of a recorded ray's hit. */
 void rt_raylog_light(rt_ray_log *log, const rt_light_record *rec);
 

@@ -1,6 +1,7 @@
 /* Shading shared by both tracers; see shading.h. */
 #include "shading.h"
 #include "area_light.h"
+#include "raylog.h"
 
 /* The skeleton's refractive index of air (format §10.3). */
 #define RT_AIR_INDEX RT_C(1.0003)
@@ -34,11 +35,9 @@ bool rt_shading_hit(const rt_tracer *tr, const rt_ray *ray, rt_ray_kind kind, ui
     p->kt = rt_surface_channel(scene, &mat->transmittance, s.uv);
     p->shininess = mat->shininess;
     p->index_of_refraction = mat->index_of_refraction;
+    rt_raylog_hit(tr->log, p->ray, &hit, &s);
     rt_ray_record *rec = rt_raylog_ray(tr->log, p->ray);
     if (rec) {
-        rec->hit = true;
-        rec->scene_hit = hit;
-        rec->surface = s;
         rec->normal_used = p->n;
         rec->entering = p->entering;
         rec->emissive = p->ke;
@@ -80,7 +79,7 @@ static rt_vec3 shadow_attenuation(const rt_tracer *tr, rt_vec3 point, rt_vec3 to
         rt_scene_hit hit;
         bool known = crossing == 0 && primed;
         if (known ? primed == 1 : !rt_shading_nearest(tr, &ray, &hit)) {
-            if (rec) rec->color = atten;
+            rt_raylog_color(tr->log, id, atten);
             return atten;
         }
         if (known) hit = tr->primed->shadow_hit[light];
@@ -89,13 +88,9 @@ static rt_vec3 shadow_attenuation(const rt_tracer *tr, rt_vec3 point, rt_vec3 to
                          ? rt_v3(RT_ZERO, RT_ZERO, RT_ZERO)
                          : rt_surface_channel(scene, &scene->materials[s.material].transmittance, s.uv);
         atten = rt_v3_mul(atten, kt);
-        if (rec) {
-            rec->hit = true;
-            rec->scene_hit = hit;
-            rec->surface = s;
-            rec->transmittance = kt;
-            rec->color = atten;
-        }
+        rt_raylog_hit(tr->log, id, &hit, &s);
+        rt_raylog_color(tr->log, id, atten);
+        if (rec) rec->transmittance = kt;
         if (rt_v3_is_zero(atten)) return atten;
         origin = s.point;
         if (remaining != RT_REAL_MAX) remaining = rt_sub(remaining, hit.hit.t);
@@ -145,10 +140,15 @@ rt_vec3 rt_shading_light(const rt_tracer *tr, uint32_t index, const rt_shading_p
                          bool lambertian)
 {
     const rt_light *l = &tr->scene->lights[index];
-    rt_vec3 black = rt_v3(RT_ZERO, RT_ZERO, RT_ZERO);
-    rt_light_record rec = {p->ray, index,  rt_v3_mul(p->kd, l->ambient),  RT_ZERO, RT_ZERO, black, black,
-                           RT_ONE, RT_ONE, rt_v3(RT_ONE, RT_ONE, RT_ONE), black};
-    rec.contribution = rec.ambient;
+    rt_vec3 ambient = rt_v3_mul(p->kd, l->ambient);
+    /* Terms the light does not reach stay zero. */
+    rt_light_record rec = {.ray = p->ray,
+                           .light = index,
+                           .ambient = ambient,
+                           .distance_attenuation = RT_ONE,
+                           .light_cosine = RT_ONE,
+                           .shadow_attenuation = rt_v3(RT_ONE, RT_ONE, RT_ONE),
+                           .contribution = ambient};
     rt_vec3 to_light;
     rt_real distance;
     if (!towards_light(l, p, position, &to_light, &distance)) {

@@ -4,6 +4,7 @@
 #ifndef RT_SHADING_H
 #define RT_SHADING_H
 
+#include "raylog.h"
 #include "trace.h"
 
 typedef struct {

@@ -1,4 +1,5 @@
 /* Recursive ray tracing; see trace.h and format §9-§10. */
+#include "raylog.h"
 #include "shading.h"
 
 static rt_vec3 trace_ray(const rt_tracer *tr, rt_ray ray, uint32_t depth, rt_ray_kind kind, uint32_t parent)
@@ -31,7 +32,7 @@ static rt_vec3 trace_ray(const rt_tracer *tr, rt_ray ray, uint32_t depth, rt_ray
             rec->total_internal_reflection = true;
         }
     }
-    if ((rec = rt_raylog_ray(tr->log, p.ray)) != 0) rec->color = color;
+    rt_raylog_color(tr->log, p.ray, color);
     return color;
 }
 

@@ -9,6 +9,7 @@
 #include "cli/cli.h"
 #include "load/scene_open.h"
 #include "path_trace.h"
+#include "raylog.h"
 #include "reference.h"
 #include "render.h"
 #include "thread/threads.h"
@@ -609,7 +610,7 @@ static uint32_t camera_rays(const rt_scene *scene, uint32_t x, uint32_t y)
 {
     static rt_ray_record rays[1 << 16];
     static rt_light_record lights[1 << 16];
-    rt_ray_log log = {rays, 0, 1 << 16, lights, 0, 1 << 16, false};
+    rt_ray_log log = {.rays = rays, .ray_capacity = 1 << 16, .lights = lights, .light_capacity = 1 << 16};
     rt_tracer tr = {.scene = scene, .use_bvh = true, .log = &log};
     rt_render_pixel(&tr, x, y);
     cr_assert_not(log.overflow);

@@ -1,6 +1,7 @@
 /* rtp_part_cut; see part_cut.h. */
 #include "part/part_cut.h"
 
+#include "raylog.h"
 #include "thread/threads.h"
 #include <stdlib.h>
 
