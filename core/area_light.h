@@ -1,4 +1,4 @@
-/* Area lights in Monte Carlo mode (format §5.2, §12.1): the node's unit square in its
+/* Area lights in Monte Carlo mode (format.md §5.4, §11.4): the node's unit square in its
  * local XZ plane, a Lambertian emitter towards its local +Y side, sampled by the
  * direct term and seen by camera rays. Outside Monte Carlo mode an area light is a
  * point light at the square's centre and none of this is used. */
@@ -9,8 +9,8 @@
 #include "scene.h"
 
 /* What a camera ray that ends on a light's square brings back, in units of the
- * light's Color. §12.1 measures that the solution's emission is far above 1 (partly
- * covered pixels are still white) and that any value from about 10 up gives the same
+ * light's Color. The solution's emission is far above 1 (format.md §11.4: partly
+ * covered pixels are still white), and any value from about 10 up gives the same
  * image; 64 is the first at which a pixel that one of its 64 samples sees on the light
  * is white, so the square's edges stay hard at the corpus's sample count. */
 #define RT_AREA_LIGHT_EMISSION RT_C(64.0)

@@ -1,12 +1,12 @@
 /* Monte Carlo tracing; see path_trace.h. A hit adds its emission and the direct term
- * of every light (format §9; an area light at one sampled point of its square, times
- * its cosine there, §12.1), then follows its branches: a cosine-weighted diffuse ray
+ * of every light (format.md §8; an area light at one sampled point of its square, times
+ * its cosine there, format.md §11.4), then follows its branches: a cosine-weighted diffuse ray
  * weighted by k_d (the cosine density cancels the cosine of the diffuse integral), a
- * glossy ray about a half vector drawn from the Blinn-Phong lobe (k_s, §12.1) and the
+ * glossy ray about a half vector drawn from the Blinn-Phong lobe (k_s, format.md §11.6) and the
  * refracted ray (k_t). With random single branching one branch is followed, chosen
  * with probability proportional to its weight and divided by that probability, so
  * the expected colour does not change. A camera ray that meets an area light's
- * square before any surface brings back the light's emission (§12.1). */
+ * square before any surface brings back the light's emission (format.md §11.4). */
 #include "path_trace.h"
 #include "area_light.h"
 #include "raylog.h"
@@ -51,7 +51,7 @@ static rt_vec3 direct(const path *pa, const rt_shading_point *p, uint64_t node)
 
 /* The reflection branch: the view vector mirrored about a half vector drawn from the
  * Blinn-Phong lobe of exponent Shininess; a direction below the surface falls back to
- * the mirror direction (format §12.1). */
+ * the mirror direction (format.md §11.6). */
 static branch glossy(const path *pa, const rt_shading_point *p, uint64_t node)
 {
     rt_vec3 h = rt_sample_blinn_half_vector(rt_sample_2d(pa->sampler, node, RT_PURPOSE_GLOSSY), p->n, p->shininess);
@@ -119,10 +119,10 @@ static rt_vec3 trace_path(const path *pa, const branch *from, rt_ray ray, uint32
     const rt_scene *scene = pa->tr->scene;
     uint32_t max_depth = scene->camera.trace.max_depth;
     rt_vec3 color = rt_v3(RT_ZERO, RT_ZERO, RT_ZERO);
-    /* As in the Whitted tracer, a ray past the recursion limit is not traced (format §10.5). */
+    /* As in the Whitted tracer, a ray past the recursion limit is not traced (format.md §9.5). */
     if (depth > max_depth) return color;
     /* Only camera rays see the lights' squares: later rays would count the light that
-     * the direct term already does (format §12.1). The surface must come first. */
+     * the direct term already does (format.md §11.4). The surface must come first. */
     uint32_t light = 0;
     rt_real light_t;
     bool sees_light = from->kind == RT_RAY_CAMERA && rt_area_light_seen(scene, &ray, &light, &light_t);
@@ -164,7 +164,7 @@ rt_vec3 rt_path_trace(const rt_tracer *tr, const rt_sampler *s, rt_ray ray)
     path pa;
     pa.tr = tr;
     pa.sampler = s;
-    /* Which keys are in effect follows the skeleton (format §12). */
+    /* Which keys are in effect follows the skeleton (format.md §11). */
     pa.diffuse = set->monte_carlo != RT_MONTE_CARLO_OFF && set->reflections && set->diffuse_reflection;
     pa.caustics = pa.diffuse && set->shadows != RT_SHADOWS_NONE && set->caustics;
     pa.single_branch = set->monte_carlo != RT_MONTE_CARLO_OFF && set->random_single_branching;

@@ -1,4 +1,4 @@
-/* Monte Carlo tracing of one camera sample (format §12, §12.1): area lights as
+/* Monte Carlo tracing of one camera sample (format.md §11, §11.4): area lights as
  * Lambertian emitters sampled on their square (soft shadows) and seen by camera rays,
  * cosine-weighted diffuse bounces, glossy reflection about a sampled Blinn-Phong half
  * vector, the caustics rule and random single branching. Whitted scenes use rt_trace

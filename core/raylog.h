@@ -7,7 +7,7 @@
 
 #define RT_NO_PARENT UINT32_MAX
 
-/* RT_RAY_GLOSSY: the reflection branch of Monte Carlo mode, about a sampled half vector (§12.1). */
+/* RT_RAY_GLOSSY: the reflection branch of Monte Carlo mode, about a sampled half vector (format.md §11.6). */
 typedef enum {
     RT_RAY_CAMERA,
     RT_RAY_REFLECTION,
@@ -23,7 +23,7 @@ typedef struct {
     uint32_t depth;
     uint32_t light; /* shadow rays: the light they test; on_light: the light seen */
     rt_ray ray;     /* on_light: t_max is where the ray meets the light's square */
-    bool on_light;  /* a Monte Carlo camera ray that ends on an area light's square (§12.1) */
+    bool on_light;  /* a Monte Carlo camera ray that ends on an area light's square (format.md §11.4) */
     /* Glossy rays: the sampled half vector, and whether the direction about it fell
      * below the surface, so that the ray took the mirror direction instead. */
     rt_vec3 half_vector;
@@ -42,7 +42,7 @@ typedef struct {
     rt_vec3 color;
 } rt_ray_record;
 
-/* The terms of one light at one surface hit (format §9). */
+/* The terms of one light at one surface hit (format.md §8). */
 typedef struct {
     uint32_t ray; /* the ray whose hit this lights */
     uint32_t light;
@@ -51,7 +51,7 @@ typedef struct {
     rt_vec3 diffuse;  /* k_d * N.L (0 when gated) */
     rt_vec3 specular; /* k_s * (N.H)^n_s (0 when gated) */
     rt_real distance_attenuation;
-    rt_real light_cosine; /* an area light's cos(theta_L) in Monte Carlo mode (§12.1); else 1 */
+    rt_real light_cosine; /* an area light's cos(theta_L) in Monte Carlo mode (format.md §11.4); else 1 */
     rt_vec3 shadow_attenuation;
     rt_vec3 contribution; /* ambient + shadow * A_dist * cos_L * I_L * (diffuse + specular) */
 } rt_light_record;

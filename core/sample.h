@@ -1,5 +1,5 @@
 /* Where the random numbers of one camera sample come from, and how they are shaped
- * into pixel positions, lens points, light points and bounce directions (format §12). */
+ * into pixel positions, lens points, light points and bounce directions (format.md §11). */
 #ifndef RT_SAMPLE_H
 #define RT_SAMPLE_H
 
@@ -29,7 +29,7 @@ rt_vec2 rt_sample_disc(rt_vec2 u);
 rt_vec3 rt_sample_cosine_hemisphere(rt_vec2 u, rt_vec3 n);
 
 /* A unit half vector about unit n with density proportional to (n.h)^exponent (the
- * Blinn-Phong lobe, format §12.1): cos(theta) = u^(1/(exponent+1)), phi = 2 pi v. */
+ * Blinn-Phong lobe, format.md §11.6): cos(theta) = u^(1/(exponent+1)), phi = 2 pi v. */
 rt_vec3 rt_sample_blinn_half_vector(rt_vec2 u, rt_vec3 n, rt_real exponent);
 
 #endif

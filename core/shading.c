@@ -3,7 +3,7 @@
 #include "area_light.h"
 #include "raylog.h"
 
-/* The skeleton's refractive index of air (format §10.3). */
+/* The skeleton's refractive index of air (format.md §9.4). */
 #define RT_AIR_INDEX RT_C(1.0003)
 
 bool rt_shading_nearest(const rt_tracer *tr, const rt_ray *ray, rt_scene_hit *hit)
@@ -26,7 +26,7 @@ bool rt_shading_hit(const rt_tracer *tr, const rt_ray *ray, rt_ray_kind kind, ui
     const rt_material *mat = &scene->materials[s.material];
     p->point = s.point;
     p->v = rt_v3_neg(ray->direction);
-    /* The shading normal is turned to face the viewer by its own sign (format §9). */
+    /* The shading normal is turned to face the viewer by its own sign (format.md §8). */
     p->entering = rt_v3_dot(s.normal, p->v) > RT_ZERO;
     p->n = p->entering ? s.normal : rt_v3_neg(s.normal);
     p->ke = rt_surface_channel(scene, &mat->emissive, s.uv);
@@ -47,7 +47,7 @@ bool rt_shading_hit(const rt_tracer *tr, const rt_ray *ray, rt_ray_kind kind, ui
 
 /* Light reaching `point` from a light `distance` away along unit `to_light`:
  * 1 when unblocked, 0 behind an opaque surface, and with coloured shadows the
- * product of the transmittance of every surface crossed (format §10.1). */
+ * product of the transmittance of every surface crossed (format.md §9.2). */
 static rt_vec3 shadow_attenuation(const rt_tracer *tr, rt_vec3 point, rt_vec3 to_light, rt_real distance,
                                   uint32_t parent, uint32_t depth, uint32_t light)
 {
@@ -185,7 +185,7 @@ bool rt_shading_refraction(const rt_shading_point *p, rt_vec3 *out)
 {
     rt_real eta =
         p->entering ? rt_div(RT_AIR_INDEX, p->index_of_refraction) : rt_div(p->index_of_refraction, RT_AIR_INDEX);
-    /* Snell's law with n facing v (format §10.3). */
+    /* Snell's law with n facing v (format.md §9.4). */
     rt_real cos_i = rt_v3_dot(p->n, p->v);
     rt_real k = rt_sub(RT_ONE, rt_mul(rt_mul(eta, eta), rt_sub(RT_ONE, rt_mul(cos_i, cos_i))));
     if (k < RT_ZERO) return false;

@@ -1,4 +1,4 @@
-/* Recursive ray tracing; see trace.h and format §9-§10. */
+/* Recursive ray tracing; see trace.h and format.md §8-§9. */
 #include "raylog.h"
 #include "shading.h"
 
@@ -7,7 +7,7 @@ static rt_vec3 trace_ray(const rt_tracer *tr, rt_ray ray, uint32_t depth, rt_ray
     const rt_scene *scene = tr->scene;
     const rt_trace_settings *set = &scene->camera.trace;
     rt_vec3 color = rt_v3(RT_ZERO, RT_ZERO, RT_ZERO);
-    /* A ray past the recursion limit is neither intersected nor logged (format §10.5). */
+    /* A ray past the recursion limit is neither intersected nor logged (format.md §9.5). */
     if (depth > set->max_depth) return color;
     rt_shading_point p;
     if (!rt_shading_hit(tr, &ray, kind, parent, depth, &p)) return color;

@@ -1,4 +1,4 @@
-/* Whitted-style ray tracing with the sample solution's shading (format §9-§10). */
+/* Whitted-style ray tracing with the sample solution's shading (format.md §8-§9). */
 #ifndef RT_TRACE_H
 #define RT_TRACE_H
 

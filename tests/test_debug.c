@@ -377,7 +377,7 @@ Test(debug, the_terms_add_up)
         }
 }
 
-/* ---- Monte Carlo rays (format §12.1) ---- */
+/* ---- Monte Carlo rays (format.md §11.4) ---- */
 
 Test(debug, monte_carlo_pixels_equal_the_render)
 {

@@ -1,6 +1,6 @@
 /* Monte Carlo rendering (core/rng.c, sample.c, path_trace.c, area_light.c, render_pixel.c):
  * the random numbers, the estimators' expected values (white furnace, caustics rule,
- * single branching, soft shadows), the conventions of format §12.1 (Lambertian area
+ * single branching, soft shadows), the conventions of format.md §11.4 and §11.6 (Lambertian area
  * lights, lights seen by camera rays only, the Blinn-Phong lobe of glossy rays),
  * convergence as 1/sqrt(spp), the energy bound, the sample count types, the thin lens,
  * and independence from tiles and threads. */
@@ -407,7 +407,7 @@ Test(montecarlo, area_light_soft_shadow_and_one_sided_emission)
     cr_expect_eq(floor_under_light(f), 0.0, "a light facing away still lights");
 }
 
-/* An area light is a Lambertian emitter (format §12.1): a small light straight above
+/* An area light is a Lambertian emitter (format.md §11.4): a small light straight above
  * the floor gives k_d = 0.8; turned by 60 degrees it sends cos 60 = half of that. */
 Test(montecarlo, area_light_is_lambertian)
 {
@@ -420,7 +420,7 @@ Test(montecarlo, area_light_is_lambertian)
 }
 
 /* A camera ray that meets a light's square from its emitting side brings back the
- * light's emission, RT_AREA_LIGHT_EMISSION x Color (format §12.1); from behind it
+ * light's emission, RT_AREA_LIGHT_EMISSION x Color (format.md §11.4); from behind it
  * passes through. A reflected ray that meets the square does not: the direct term
  * already counts that light. */
 Test(montecarlo, camera_rays_see_area_lights_and_later_rays_do_not)
@@ -436,7 +436,7 @@ Test(montecarlo, camera_rays_see_area_lights_and_later_rays_do_not)
 }
 
 /* The glossy branch mirrors the view vector about half vectors drawn from the
- * Blinn-Phong lobe of exponent Shininess (format §12.1): for a density proportional to
+ * Blinn-Phong lobe of exponent Shininess (format.md §11.6): for a density proportional to
  * cos^n, E[cos] = (n + 1) / (n + 2). Read from the ray log of 256 samples of a glossy
  * floor (k_s 1, k_d 0, Shininess 20) seen at 45 degrees. */
 Test(montecarlo, glossy_rays_sample_the_blinn_phong_lobe)
@@ -538,7 +538,7 @@ Test(montecarlo, error_falls_as_one_over_sqrt_spp, .timeout = 120)
 }
 
 /* No sample is brighter than a path can carry, except a camera ray that ends on a
- * light's square: it brings back exactly that light's emission (format §12.1). Per
+ * light's square: it brings back exactly that light's emission (format.md §11.4). Per
  * channel, each of the depth + 1 hits adds at most E = max k_e + sum over lights of
  * (max k_d * ambient + colour * A * (max k_d + max k_s)), A = min(1, 1 / Const Atten)
  * bounding the distance attenuation and cosines (N.L, the light's, the lobe's) <= 1,

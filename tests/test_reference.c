@@ -5,7 +5,7 @@
  * bound on the largest difference. A regression of a few tenths of a dB fails, so a
  * re-bless cannot hide one. The rows printed here are the README's table. The Monte
  * Carlo scene cornell_ray is judged by statistics instead: PSNR at full resolution and
- * after 4x4 box averaging (format §12.1, docs/montecarlo.md). */
+ * after 4x4 box averaging (format.md §11.4, docs/montecarlo.md). */
 #include "image/image_compare.h"
 #include "reference.h"
 #include <criterion/criterion.h>
