@@ -8,16 +8,7 @@
 
 static void num(FILE *out, rt_real r) { rtp_json_number(out, rt_to_double(r)); }
 
-static void vec(FILE *out, rt_vec3 v)
-{
-    fputc('[', out);
-    num(out, v.x);
-    fputs(", ", out);
-    num(out, v.y);
-    fputs(", ", out);
-    num(out, v.z);
-    fputc(']', out);
-}
+static void vec(FILE *out, rt_vec3 v) { rtp_json_vec3(out, rt_to_double(v.x), rt_to_double(v.y), rt_to_double(v.z)); }
 
 /* ", \"name\": " */
 static void key(FILE *out, const char *name) { fprintf(out, ", \"%s\": ", name); }
