@@ -86,7 +86,7 @@ bool bench_make_workload(const rt_scene *scene, uint32_t width, uint32_t height,
     }
     rt_real fw = rt_from_int(width), fh = rt_from_int(height), half = RT_C(0.5);
     for (uint32_t row = 0; row < height; row++) {
-        uint32_t j = height - 1 - row; /* camera y counts from the bottom (format §8.2) */
+        uint32_t j = height - 1 - row; /* camera y counts from the bottom (format.md §7.3) */
         rt_real y = rt_div(rt_add(rt_from_int(j), half), fh);
         for (uint32_t col = 0; col < width; col++) {
             rt_real x = rt_div(rt_add(rt_from_int(col), half), fw);

@@ -1,4 +1,4 @@
-/* The format's built-in meshes (format §7.1 and §5.5) as constant tables. */
+/* The format's built-in meshes (format.md §6.1 and §5.7) as constant tables. */
 #include "builtin_mesh.h"
 
 #define H RT_C(0.5)

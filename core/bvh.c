@@ -2,6 +2,7 @@
  * (bvh_collapse.c); see bvh.h (queries: scene_query.c). */
 #include "bvh.h"
 #include "bvh_binary.h"
+#include "invariant.h"
 
 #define BIN_COUNT 16
 /* Leaves hold LEAF_MIN references or fewer without asking, at most LEAF_MAX; in between
@@ -283,6 +284,7 @@ static void make_node(const build *b, const build_task *task, const split *s, bu
     rt_aabb left_c, right_c;
     /* A split plane has references on both sides (price_split), so 0 < left_n < count. */
     uint32_t left_n = partition(b->refs, task->first, task->count, s, &left_c, &right_c);
+    RT_ASSERT(0 < left_n && left_n < task->count);
     uint32_t left = 2 * (task->first + left_n) - 1;
     node->first = left;
     node->count = 0;
@@ -309,6 +311,7 @@ static uint32_t build_subtree(const build *b, build_task root, build_task *stack
         if (!splits) continue;
         inner++;
         /* Right first, so the left subtree is built next (a bounded stack). */
+        RT_ASSERT(top + 2 <= SUBTREE_STACK);
         stack[top++] = kids[1];
         stack[top++] = kids[0];
     }

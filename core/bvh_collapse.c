@@ -1,5 +1,6 @@
 /* The binary SAH tree (bvh_binary.h) collapsed into the 4-wide tree of bvh.h. */
 #include "bvh_binary.h"
+#include "invariant.h"
 
 void rt_bvh_store_box(rt_bound box[6], rt_aabb b, int grid)
 {
@@ -97,6 +98,7 @@ static uint32_t collapse(const rt_bin_node *bin, int grid, rt_bvh_node *wide, co
                 continue;
             }
             node->child[c] = count;
+            RT_ASSERT(top < COLLAPSE_STACK);
             stack[top++] = (collapse_task){kids[c], count++, t.depth + 1};
         }
     }

@@ -7,24 +7,16 @@
 #define RT_BVH_FLOAT_H
 
 #include "bvh_leaf.h"
+#include "invariant.h"
 
 #if defined(__SSE2__) && !defined(RT_REAL_FIXED)
 #define FLOAT_WALK 1
 typedef float v4f __attribute__((vector_size(16), aligned(4), may_alias));
 
-/* Culling only has to keep every child the exact (double) slab test hits, entered no
- * later: boxes are padded beyond any rounding of a hit's t. So each plane's distance
- * (p - o) inv is bounded from below (near planes) or above (far planes) rather than
- * rounded: the origin is rounded to the float on the safe side for each (o_near,
- * o_far), and the reciprocal shrunk (near) or grown (far) by 2^-21, more than the three
- * float roundings of a distance (difference, product, the reciprocal's conversion) and
- * the double test's own two: (1 + 2^-24)^4 (1 - 2^-21) < 1 - 2^-52. That bounds
- * positive distances; a near distance that comes out negative is below t_min > 0
- * anyway, and a far distance matters only where the double test hits, at or beyond
- * t_min > 0. So the entry distance is at or below the double test's and the exit at or
- * above it. Rays with t_min outside [2^-100, 2^100] (below it float products could be
- * subnormal), |o| > 2^100, or distances that could leave the float range
- * ((extent + |o|) |inv| > 2^120, |inv| outside [2^-100, 2^100]) take the double test. */
+/* The double build's float box test: origins rounded to the safe side, reciprocals
+ * shrunk (near planes) or grown (far planes) by 2^-21, so a child the exact double test
+ * enters is entered no later; the argument and its range: docs/box-tests.md, "The float
+ * walk". Rays outside that range take the double test. */
 typedef struct {
     float o_near[3], o_far[3], inv_near[3], inv_far[3];
     float t_min, t_max; /* rounded down and up */
@@ -160,6 +152,7 @@ static inline bool float_walk(const rt_scene *scene, const rt_ray_setup *rs, con
             if (!hits) goto pop;
             float t[RT_BVH_WIDTH];
             *(v4f *)t = t0;
+            RT_ASSERT(top + RT_BVH_WIDTH - 1 <= FLOAT_STACK);
             e = float_descend(node, hits, t, stack, &top);
         }
         if (visit_leaf(scene, e.child, e.count, rs, any, out, &found)) {

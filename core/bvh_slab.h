@@ -41,20 +41,9 @@ static inline v2df v2df_from_hi(v4sf a)
 #endif
 
 #ifdef RT_REAL_FIXED
-/* The fixed build's box test in plain 64-bit integers. Culling only has to be
- * conservative (a box is never missed where the exact test hits it; the boxes are
- * padded beyond any rounding of a hit's t), so instead of rounded, saturated Q32.32
- * products it bounds each plane's distance from below (near planes) or above (far
- * planes) in a per-ray unit of distance. With the plane b and o_lo = floor(origin) in
- * the tree's grid units and m = floor(inv * 2^e) (|m| <= 2^29 on the steepest axis),
- * the distance in units is d' M with d' in (b - o_lo - 1, b - o_lo] and M in [m, m + 1).
- * Going up an axis (m >= 0), a near plane is at least (b - o_lo - 1) m away and a far
- * plane at most (b - o_lo) (m + 1); going down, at least (b - o_lo) (m + 1) and at most
- * (b - o_lo - 1) m. Each bound holds unless the plane lies behind the origin, and with
- * t_min >= 0 that cannot matter: such a near plane's bound is at most 0, and such a far
- * plane is missed by the exact test too. So a plane costs one subtraction and one
- * multiply, (b - o) m with o and m chosen per ray. With |o_lo| < 2^32 every product
- * stays below 2^62; rays beyond that, or with t_min < 0, take the general test. */
+/* The fixed build's box test in plain 64-bit integers: each plane's distance bounded from
+ * below (near) or above (far) in a per-ray unit, one subtraction and one multiply per
+ * plane, (b - o) m; why the bounds are conservative: docs/box-tests.md, "The fixed build". */
 typedef struct {
     int64_t near_o[3], near_m[3], far_o[3], far_m[3]; /* a plane's bound is (b - o) m */
     int64_t t_min_u;                                  /* t_min in units, rounded down */

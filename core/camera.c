@@ -3,7 +3,7 @@
 #include "sample.h"
 
 /* P - eye for the perspective camera's image-plane point (x, y): the image plane sits
- * Focus Distance ahead (format §8.2), which is also the plane in focus (§8.4). */
+ * Focus Distance ahead (format.md §7.2), which is also the plane in focus (§7.5). */
 static rt_vec3 focal_offset(const rt_camera *cam, rt_real sx, rt_real sy)
 {
     rt_real focus = cam->trace.focus_distance > RT_ZERO ? cam->trace.focus_distance : RT_ONE;
@@ -20,7 +20,7 @@ rt_ray rt_camera_ray(const rt_camera *cam, rt_real x, rt_real y)
     ray.t_min = RT_HIT_EPSILON;
     ray.t_max = RT_REAL_MAX;
     if (!cam->perspective) {
-        /* Parallel rays over a view Orthographic View Width wide (format §8.3). */
+        /* Parallel rays over a view Orthographic View Width wide (format.md §7.4). */
         rt_real half_w = rt_mul(cam->ortho_width, RT_C(0.5));
         rt_real half_h = rt_div(half_w, cam->aspect);
         ray.origin = rt_v3_add(
@@ -61,7 +61,7 @@ rt_ray rt_camera_grid_ray(const rt_camera *cam, uint32_t column, uint32_t row, u
 
 rt_ray rt_camera_pixel_ray(const rt_camera *cam, uint32_t column, uint32_t row, uint32_t sample)
 {
-    /* 4^n samples on a regular 2^n x 2^n grid of sub-pixel centres (format §11.1),
+    /* 4^n samples on a regular 2^n x 2^n grid of sub-pixel centres (format.md §10.1),
      * numbered row by row from the bottom left. */
     uint32_t side = 1u << cam->trace.samples_per_pixel_index;
     return rt_camera_grid_ray(cam, column, row, sample % side, sample / side, side);

@@ -1,17 +1,17 @@
-/* Camera rays (format §8): where each pixel and sample looks from and towards. */
+/* Camera rays (format.md §7): where each pixel and sample looks from and towards. */
 #ifndef RT_CAMERA_H
 #define RT_CAMERA_H
 
 #include "ray.h"
 #include "scene.h"
 
-/* The image's y counts rows from the bottom (format §8), the buffer's from the top. */
+/* The image's y counts rows from the bottom (format.md §7), the buffer's from the top. */
 static inline uint32_t rt_camera_row_from_bottom(const rt_camera *cam, uint32_t row) { return cam->height - 1 - row; }
 
-/* The camera ray through image point (x, y) in [0,1]^2, y = 0 at the bottom (format §8). */
+/* The camera ray through image point (x, y) in [0,1]^2, y = 0 at the bottom (format.md §7). */
 rt_ray rt_camera_ray(const rt_camera *cam, rt_real x, rt_real y);
 /* The same through the point `lens` ([0,1)^2, mapped to the disc of diameter Aperture
- * Size) of a thin lens focused at Focus Distance (format §8.4); a pinhole without aperture. */
+ * Size) of a thin lens focused at Focus Distance (format.md §7.5); a pinhole without aperture. */
 rt_ray rt_camera_lens_ray(const rt_camera *cam, rt_real x, rt_real y, rt_vec2 lens);
 /* The ray through the centre of cell (a, b) of a side x side grid over pixel (column, row),
  * row 0 = top, cell (0, 0) at the pixel's bottom left. */

@@ -1,5 +1,5 @@
-/* Mesh processing in object space: area-weighted smooth normals (format §7.3) and
- * Loop subdivision (§7.4). All memory comes from the caller's arena; scratch is
+/* Mesh processing in object space: area-weighted smooth normals (format.md §6.6) and
+ * Loop subdivision (format.md §6.7). All memory comes from the caller's arena; scratch is
  * released before returning, on success and on failure alike. */
 #include "mesh.h"
 #include "hash.h"
@@ -146,7 +146,7 @@ static rt_status number_edges(const rt_mesh_desc *m, uint32_t *tri_edge, rt_aren
     return RT_OK;
 }
 
-/* Step 1 of §7.4: every edge gets its midpoint (and midpoint uv) as vertex V + edge;
+/* Step 1 of format.md §6.7: every edge gets its midpoint (and midpoint uv) as vertex V + edge;
  * triangle (A,B,C) becomes (A,ab,ca), (B,bc,ab), (C,ca,bc), (ab,bc,ca). */
 static void split(const rt_mesh_desc *m, const uint32_t *tri_edge, rt_vec3 *pos, rt_vec2 *uv, uint32_t *idx)
 {
@@ -285,7 +285,7 @@ static rt_vec3 wedge_normal(const ring_builder *b, const rt_vec3 *p, uint32_t v)
 
 /* ---- Loop subdivision: one level ---- */
 
-/* Step 2 of §7.4 (from -> to), and on the last level the limit projection (to -> from)
+/* Step 2 of format.md §6.7 (from -> to), and on the last level the limit projection (to -> from)
  * and limit normals from the averaged positions. */
 static void smooth(ring_builder *b, const loop_table *w, uint32_t nv, const rt_vec3 *from, rt_vec3 *to)
 {
@@ -400,7 +400,7 @@ rt_status rt_mesh_subdivide(const rt_mesh_desc *mesh, uint32_t levels, rt_arena 
     loop_table_init(&w);
     size_t mark = rt_arena_mark(arena);
     rt_mesh_desc m = *mesh;
-    m.normals = NULL; /* input normals are not carried through (§7.4) */
+    m.normals = NULL; /* input normals are not carried through (format.md §6.7) */
     for (uint32_t level = 1; level <= levels; level++) {
         rt_mesh_desc next;
         rt_status st = subdivide_once(&m, level == levels, &w, arena, &next);

@@ -1,6 +1,8 @@
-/* Monte Carlo tracing of one camera sample (format §12): area lights sampled on
- * their square (soft shadows), cosine-weighted diffuse bounces, the caustics rule
- * and random single branching. Whitted scenes use rt_trace instead. */
+/* Monte Carlo tracing of one camera sample (format.md §11, §11.4): area lights as
+ * Lambertian emitters sampled on their square (soft shadows) and seen by camera rays,
+ * cosine-weighted diffuse bounces, glossy reflection about a sampled Blinn-Phong half
+ * vector, the caustics rule and random single branching. Whitted scenes use rt_trace
+ * instead. */
 #ifndef RT_PATH_TRACE_H
 #define RT_PATH_TRACE_H
 

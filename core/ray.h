@@ -5,7 +5,7 @@
 #include "vec.h"
 
 /* Hits closer than this along a unit-length ray are ignored, for every kind of ray:
- * the sample solution's effective epsilon (format §10.4). */
+ * the sample solution's effective epsilon (format.md §9.1). */
 #define RT_HIT_EPSILON RT_C(1e-3)
 
 typedef struct {

@@ -26,6 +26,21 @@ rt_ray_record *rt_raylog_ray(rt_ray_log *log, uint32_t id)
     return &log->rays[id];
 }
 
+void rt_raylog_hit(rt_ray_log *log, uint32_t id, const rt_scene_hit *hit, const rt_surface *s)
+{
+    rt_ray_record *r = rt_raylog_ray(log, id);
+    if (!r) return;
+    r->hit = true;
+    r->scene_hit = *hit;
+    r->surface = *s;
+}
+
+void rt_raylog_color(rt_ray_log *log, uint32_t id, rt_vec3 color)
+{
+    rt_ray_record *r = rt_raylog_ray(log, id);
+    if (r) r->color = color;
+}
+
 void rt_raylog_light(rt_ray_log *log, const rt_light_record *rec)
 {
     if (!log || rec->ray == RT_NO_PARENT) return;

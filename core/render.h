@@ -11,11 +11,11 @@
 rt_vec3 rt_render_sample(const rt_tracer *tr, uint32_t column, uint32_t row, uint32_t sample);
 
 /* The unclamped colour of pixel (column, row), row 0 = top of the image, with the
- * camera's sample count type: constant, adaptive recursive or standard error (§11.1). */
+ * camera's sample count type: constant, adaptive recursive or standard error (format.md §10). */
 rt_vec3 rt_render_pixel(const rt_tracer *tr, uint32_t column, uint32_t row);
 
 /* Renders columns [x0, x1) of rows [y0, y1) into rgb (width * height * 3 bytes, row 0
- * at the top), each channel quantised as the sample solution does (format §11.3). */
+ * at the top), each channel quantised as the sample solution does (format.md §10.5). */
 void rt_render_region(const rt_tracer *tr, uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1, uint8_t *rgb);
 
 /* A half-open pixel rectangle of the frame: columns [x0, x1), rows [y0, y1), row 0 at the top. */

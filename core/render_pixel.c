@@ -1,4 +1,4 @@
-/* How many samples a pixel takes and how they are averaged (format §11.1, §12):
+/* How many samples a pixel takes and how they are averaged (format.md §10.2, §11):
  * a constant count, adaptive recursive subdivision, or samples until the mean's
  * standard error is small. */
 #include "path_trace.h"
@@ -139,7 +139,7 @@ rt_vec3 rt_render_pixel(const rt_tracer *tr, uint32_t column, uint32_t row)
 {
     const rt_trace_settings *set = &tr->scene->camera.trace;
     if (set->sample_count_type == RT_SAMPLES_STD_ERROR) return std_error_pixel(tr, column, row);
-    /* The skeleton turns adaptive recursion off in Monte Carlo mode (format §11.1). */
+    /* The skeleton turns adaptive recursion off in Monte Carlo mode (format.md §10.2). */
     if (set->sample_count_type == RT_SAMPLES_ADAPTIVE && set->monte_carlo == RT_MONTE_CARLO_OFF)
         return adaptive_pixel(tr, column, row);
     return constant_pixel(tr, column, row);

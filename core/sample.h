@@ -1,5 +1,5 @@
 /* Where the random numbers of one camera sample come from, and how they are shaped
- * into pixel positions, lens points, light points and bounce directions (format §12). */
+ * into pixel positions, lens points, light points and bounce directions (format.md §11). */
 #ifndef RT_SAMPLE_H
 #define RT_SAMPLE_H
 
@@ -8,7 +8,7 @@
 
 /* What a 2D draw is for; with the path node it keys the draw. Area light i uses
  * RT_PURPOSE_LIGHT + i. */
-enum { RT_PURPOSE_PIXEL, RT_PURPOSE_LENS, RT_PURPOSE_BRANCH, RT_PURPOSE_DIFFUSE, RT_PURPOSE_LIGHT };
+enum { RT_PURPOSE_PIXEL, RT_PURPOSE_LENS, RT_PURPOSE_BRANCH, RT_PURPOSE_DIFFUSE, RT_PURPOSE_GLOSSY, RT_PURPOSE_LIGHT };
 
 typedef struct {
     uint64_t pixel;      /* rt_rng_pixel_key of the pixel */
@@ -27,5 +27,9 @@ rt_vec2 rt_sample_disc(rt_vec2 u);
 
 /* A unit direction about unit n with density cos(theta)/pi (a disc point lifted to the hemisphere). */
 rt_vec3 rt_sample_cosine_hemisphere(rt_vec2 u, rt_vec3 n);
+
+/* A unit half vector about unit n with density proportional to (n.h)^exponent (the
+ * Blinn-Phong lobe, format.md §11.6): cos(theta) = u^(1/(exponent+1)), phi = 2 pi v. */
+rt_vec3 rt_sample_blinn_half_vector(rt_vec2 u, rt_vec3 n, rt_real exponent);
 
 #endif

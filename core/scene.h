@@ -25,21 +25,21 @@
 #define RT_MAX_MIN_SAMPLES_INDEX 4
 #define RT_MAX_MAX_SAMPLES_INDEX 6
 
-/* The Shadows setting (format §10.1). */
+/* The Shadows setting (format.md §9.2). */
 typedef enum {
     RT_SHADOWS_NONE,
     RT_SHADOWS_OPAQUE,
     RT_SHADOWS_COLOURED,
     RT_SHADOWS_LAST = RT_SHADOWS_COLOURED
 } rt_shadow_mode;
-/* The Monte Carlo setting (§12): off (Whitted), uniform or stratified random samples. */
+/* The Monte Carlo setting (format.md §11): off (Whitted), uniform or stratified random samples. */
 typedef enum {
     RT_MONTE_CARLO_OFF,
     RT_MONTE_CARLO_UNIFORM,
     RT_MONTE_CARLO_STRATIFIED,
     RT_MONTE_CARLO_LAST = RT_MONTE_CARLO_STRATIFIED
 } rt_monte_carlo_mode;
-/* The Sample Count Type setting (§11.1). */
+/* The Sample Count Type setting (format.md §10). */
 typedef enum {
     RT_SAMPLES_CONSTANT,
     RT_SAMPLES_ADAPTIVE,  /* recursive subdivision while corner colours differ */
@@ -51,7 +51,7 @@ typedef enum {
 
 /* One material input: a solid colour, or a texture that replaces it. */
 typedef struct {
-    rt_vec3 color;    /* already quantised to byte/255 by the loader (format §6.2) */
+    rt_vec3 color;    /* already quantised to byte/255 by the loader (format.md §4.5) */
     uint32_t texture; /* index into textures, or RT_NO_TEXTURE */
 } rt_channel;
 
@@ -184,6 +184,7 @@ typedef struct {
     uint32_t child[RT_BVH_WIDTH];
     uint32_t count[RT_BVH_WIDTH];
 } rt_bvh_node;
+_Static_assert(sizeof(rt_bvh_node) == 128, "a BVH node is two 64-byte cache lines");
 
 /* The query code the BVH runs: every kernel gives the same results. The build picks the
  * best one the compiler's target guarantees (SSE2 on x86-64); the platform may pick

@@ -210,7 +210,7 @@ static rt_status build_camera(const rt_camera_desc *c, rt_camera *cam, rt_build_
     cam->up = rt_v3_normalize(rt_affine_vector(&c->world, rt_v3(RT_ZERO, RT_ONE, RT_ZERO)));
     if (rt_v3_is_zero(cam->forward) || rt_v3_is_zero(cam->right) || rt_v3_is_zero(cam->up))
         return fail(err, RT_ERR_INVALID, "camera transform is singular", UINT32_MAX);
-    /* The skeleton converts degrees with 3.14159, not pi (format §8.2). */
+    /* The skeleton converts degrees with 3.14159, not pi (format.md §7.2). */
     cam->tan_half_fov = rt_tan(rt_mul(rt_mul(c->fov_degrees, RT_C(0.5)), rt_div(RT_C(3.14159), rt_from_int(180))));
     cam->aspect = rt_div(rt_from_int(c->width), rt_from_int(c->height));
     cam->perspective = c->perspective;

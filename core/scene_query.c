@@ -2,6 +2,7 @@
  * float walk (bvh_float.h) for the rays it takes, the general walk here for the others. */
 #include "scene_query.h"
 #include "bvh_slab.h"
+#include "invariant.h"
 
 #include "bvh_float.h"
 #include "bvh_leaf.h"
@@ -94,6 +95,7 @@ static bool nearest_bvh(const rt_scene *scene, const rt_ray_setup *rs, bool any,
             rt_real limit = found ? out->hit.t : rs->ray.t_max, t[RT_BVH_WIDTH];
             unsigned hits = slab_hit_children(&sr, node, limit, t);
             if (!hits) break;
+            RT_ASSERT(top + RT_BVH_WIDTH - 1 <= QUERY_STACK);
             e = descend(node, hits, t, stack, &top);
         }
         if (e.count == 0) continue;

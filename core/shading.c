@@ -1,7 +1,9 @@
 /* Shading shared by both tracers; see shading.h. */
 #include "shading.h"
+#include "area_light.h"
+#include "raylog.h"
 
-/* The skeleton's refractive index of air (format §10.3). */
+/* The skeleton's refractive index of air (format.md §9.4). */
 #define RT_AIR_INDEX RT_C(1.0003)
 
 bool rt_shading_nearest(const rt_tracer *tr, const rt_ray *ray, rt_scene_hit *hit)
@@ -24,7 +26,7 @@ bool rt_shading_hit(const rt_tracer *tr, const rt_ray *ray, rt_ray_kind kind, ui
     const rt_material *mat = &scene->materials[s.material];
     p->point = s.point;
     p->v = rt_v3_neg(ray->direction);
-    /* The shading normal is turned to face the viewer by its own sign (format §9). */
+    /* The shading normal is turned to face the viewer by its own sign (format.md §8). */
     p->entering = rt_v3_dot(s.normal, p->v) > RT_ZERO;
     p->n = p->entering ? s.normal : rt_v3_neg(s.normal);
     p->ke = rt_surface_channel(scene, &mat->emissive, s.uv);
@@ -33,11 +35,9 @@ bool rt_shading_hit(const rt_tracer *tr, const rt_ray *ray, rt_ray_kind kind, ui
     p->kt = rt_surface_channel(scene, &mat->transmittance, s.uv);
     p->shininess = mat->shininess;
     p->index_of_refraction = mat->index_of_refraction;
+    rt_raylog_hit(tr->log, p->ray, &hit, &s);
     rt_ray_record *rec = rt_raylog_ray(tr->log, p->ray);
     if (rec) {
-        rec->hit = true;
-        rec->scene_hit = hit;
-        rec->surface = s;
         rec->normal_used = p->n;
         rec->entering = p->entering;
         rec->emissive = p->ke;
@@ -47,7 +47,7 @@ bool rt_shading_hit(const rt_tracer *tr, const rt_ray *ray, rt_ray_kind kind, ui
 
 /* Light reaching `point` from a light `distance` away along unit `to_light`:
  * 1 when unblocked, 0 behind an opaque surface, and with coloured shadows the
- * product of the transmittance of every surface crossed (format §10.1). */
+ * product of the transmittance of every surface crossed (format.md §9.2). */
 static rt_vec3 shadow_attenuation(const rt_tracer *tr, rt_vec3 point, rt_vec3 to_light, rt_real distance,
                                   uint32_t parent, uint32_t depth, uint32_t light)
 {
@@ -79,7 +79,7 @@ static rt_vec3 shadow_attenuation(const rt_tracer *tr, rt_vec3 point, rt_vec3 to
         rt_scene_hit hit;
         bool known = crossing == 0 && primed;
         if (known ? primed == 1 : !rt_shading_nearest(tr, &ray, &hit)) {
-            if (rec) rec->color = atten;
+            rt_raylog_color(tr->log, id, atten);
             return atten;
         }
         if (known) hit = tr->primed->shadow_hit[light];
@@ -88,13 +88,9 @@ static rt_vec3 shadow_attenuation(const rt_tracer *tr, rt_vec3 point, rt_vec3 to
                          ? rt_v3(RT_ZERO, RT_ZERO, RT_ZERO)
                          : rt_surface_channel(scene, &scene->materials[s.material].transmittance, s.uv);
         atten = rt_v3_mul(atten, kt);
-        if (rec) {
-            rec->hit = true;
-            rec->scene_hit = hit;
-            rec->surface = s;
-            rec->transmittance = kt;
-            rec->color = atten;
-        }
+        rt_raylog_hit(tr->log, id, &hit, &s);
+        rt_raylog_color(tr->log, id, atten);
+        if (rec) rec->transmittance = kt;
         if (rt_v3_is_zero(atten)) return atten;
         origin = s.point;
         if (remaining != RT_REAL_MAX) remaining = rt_sub(remaining, hit.hit.t);
@@ -140,32 +136,40 @@ bool rt_shading_shadow_ray(const rt_tracer *tr, uint32_t index, const rt_shading
     return true;
 }
 
-rt_vec3 rt_shading_light(const rt_tracer *tr, uint32_t index, const rt_shading_point *p, rt_vec3 position, bool emits)
+rt_vec3 rt_shading_light(const rt_tracer *tr, uint32_t index, const rt_shading_point *p, rt_vec3 position,
+                         bool lambertian)
 {
     const rt_light *l = &tr->scene->lights[index];
-    rt_vec3 black = rt_v3(RT_ZERO, RT_ZERO, RT_ZERO);
-    rt_light_record rec = {p->ray, index,  rt_v3_mul(p->kd, l->ambient),  RT_ZERO, RT_ZERO, black,
-                           black,  RT_ONE, rt_v3(RT_ONE, RT_ONE, RT_ONE), black};
-    rec.contribution = rec.ambient;
+    rt_vec3 ambient = rt_v3_mul(p->kd, l->ambient);
+    /* Terms the light does not reach stay zero. */
+    rt_light_record rec = {.ray = p->ray,
+                           .light = index,
+                           .ambient = ambient,
+                           .distance_attenuation = RT_ONE,
+                           .light_cosine = RT_ONE,
+                           .shadow_attenuation = rt_v3(RT_ONE, RT_ONE, RT_ONE),
+                           .contribution = ambient};
     rt_vec3 to_light;
     rt_real distance;
-    if (!emits) {
-        rt_raylog_light(tr->log, &rec);
-        return rec.contribution;
-    }
     if (!towards_light(l, p, position, &to_light, &distance)) {
         rt_raylog_light(tr->log, &rec);
         return rec.contribution;
     }
-    if (l->kind != RT_LIGHT_DIRECTIONAL) rec.distance_attenuation = distance_attenuation(l, distance);
+    if (l->kind != RT_LIGHT_DIRECTIONAL) {
+        rec.distance_attenuation = distance_attenuation(l, distance);
+        if (lambertian) rec.light_cosine = rt_area_light_cosine(l, to_light);
+    }
     rec.n_dot_l = rt_v3_dot(p->n, to_light);
-    if (rec.n_dot_l > RT_ZERO) {
+    /* Behind a Lambertian emitter (cosine 0) only the ambient term is left. */
+    if (rec.n_dot_l > RT_ZERO && rec.light_cosine > RT_ZERO) {
         rt_vec3 h = rt_v3_normalize(rt_v3_add(to_light, p->v));
         rec.n_dot_h = rt_max(rt_v3_dot(p->n, h), RT_ZERO);
         rec.diffuse = rt_v3_scale(p->kd, rec.n_dot_l);
         rec.specular = rt_v3_scale(p->ks, rt_pow(rec.n_dot_h, rt_max(p->shininess, RT_C(1e-5))));
         rec.shadow_attenuation = shadow_attenuation(tr, p->point, to_light, distance, p->ray, p->depth, index);
-        rt_vec3 light = rt_v3_scale(rt_v3_mul(rec.shadow_attenuation, l->color), rec.distance_attenuation);
+        /* A cosine of exactly 1 (point-like lights) leaves the product unchanged in both builds. */
+        rt_vec3 light = rt_v3_scale(rt_v3_mul(rec.shadow_attenuation, l->color),
+                                    rt_mul(rec.distance_attenuation, rec.light_cosine));
         rec.contribution = rt_v3_add(rec.ambient, rt_v3_mul(light, rt_v3_add(rec.diffuse, rec.specular)));
     }
     rt_raylog_light(tr->log, &rec);
@@ -181,7 +185,7 @@ bool rt_shading_refraction(const rt_shading_point *p, rt_vec3 *out)
 {
     rt_real eta =
         p->entering ? rt_div(RT_AIR_INDEX, p->index_of_refraction) : rt_div(p->index_of_refraction, RT_AIR_INDEX);
-    /* Snell's law with n facing v (format §10.3). */
+    /* Snell's law with n facing v (format.md §9.4). */
     rt_real cos_i = rt_v3_dot(p->n, p->v);
     rt_real k = rt_sub(RT_ONE, rt_mul(rt_mul(eta, eta), rt_sub(RT_ONE, rt_mul(cos_i, cos_i))));
     if (k < RT_ZERO) return false;

@@ -1,9 +1,10 @@
 /* What the Whitted and the Monte Carlo tracers share: the shading frame at a hit,
- * the direct light of one light (format §9, shadows §10.1) and the mirror and
- * refracted directions (§10.2-§10.3). */
+ * the direct light of one light (format.md §8, shadows §9.2) and the mirror and
+ * refracted directions (format.md §9.3-§9.4). */
 #ifndef RT_SHADING_H
 #define RT_SHADING_H
 
+#include "raylog.h"
 #include "trace.h"
 
 typedef struct {
@@ -24,11 +25,14 @@ bool rt_shading_hit(const rt_tracer *tr, const rt_ray *ray, rt_ray_kind kind, ui
 
 /* Ambient plus the shadowed Blinn-Phong term of light `index` as if it sat at
  * `position` (point and area lights; directional lights use their direction).
- * emits = false leaves the ambient term only. */
-rt_vec3 rt_shading_light(const rt_tracer *tr, uint32_t index, const rt_shading_point *p, rt_vec3 position, bool emits);
+ * lambertian (an area light's sampled point, Monte Carlo mode, format.md §11.4): the
+ * term is multiplied by the cosine at the light, and points behind it get the
+ * ambient term only. */
+rt_vec3 rt_shading_light(const rt_tracer *tr, uint32_t index, const rt_shading_point *p, rt_vec3 position,
+                         bool lambertian);
 
 /* The first shadow ray rt_shading_light traces towards light `index` as if it sat at
- * `position` (emits = true), or false when it traces none. */
+ * `position` (lambertian = false, as Whitted tracing calls it), or false when it traces none. */
 bool rt_shading_shadow_ray(const rt_tracer *tr, uint32_t index, const rt_shading_point *p, rt_vec3 position,
                            rt_ray *out);
 

@@ -92,7 +92,7 @@ static rt_vec3 lerp(rt_vec3 a, rt_vec3 b, rt_real t) { return rt_v3_add(a, rt_v3
 
 rt_vec3 rt_surface_texel(const rt_texture *tex, rt_vec2 uv)
 {
-    /* Texel (i, j) sits exactly at uv (i/W, j/H); v = 0 is the top row (format §6.3). */
+    /* Texel (i, j) sits exactly at uv (i/W, j/H); v = 0 is the top row (format.md §4.6). */
     uint32_t w = tex->width, h = tex->height;
     rt_real px = rt_mul(uv.u, rt_from_int(w)), py = rt_mul(uv.v, rt_from_int(h));
     if (!tex->bilinear)

@@ -1,4 +1,5 @@
-/* Recursive ray tracing; see trace.h and format §9-§10. */
+/* Recursive ray tracing; see trace.h and format.md §8-§9. */
+#include "raylog.h"
 #include "shading.h"
 
 static rt_vec3 trace_ray(const rt_tracer *tr, rt_ray ray, uint32_t depth, rt_ray_kind kind, uint32_t parent)
@@ -6,7 +7,7 @@ static rt_vec3 trace_ray(const rt_tracer *tr, rt_ray ray, uint32_t depth, rt_ray
     const rt_scene *scene = tr->scene;
     const rt_trace_settings *set = &scene->camera.trace;
     rt_vec3 color = rt_v3(RT_ZERO, RT_ZERO, RT_ZERO);
-    /* A ray past the recursion limit is neither intersected nor logged (format §10.5). */
+    /* A ray past the recursion limit is neither intersected nor logged (format.md §9.5). */
     if (depth > set->max_depth) return color;
     rt_shading_point p;
     if (!rt_shading_hit(tr, &ray, kind, parent, depth, &p)) return color;
@@ -14,7 +15,7 @@ static rt_vec3 trace_ray(const rt_tracer *tr, rt_ray ray, uint32_t depth, rt_ray
      * lights at their centre outside Monte Carlo mode. */
     color = p.ke;
     for (uint32_t i = 0; i < scene->light_count; i++)
-        color = rt_v3_add(color, rt_shading_light(tr, i, &p, scene->lights[i].position, true));
+        color = rt_v3_add(color, rt_shading_light(tr, i, &p, scene->lights[i].position, false));
     if (set->reflections && !rt_v3_is_zero(p.ks)) {
         rt_vec3 reflected = trace_ray(tr, rt_ray_make(p.point, rt_shading_mirror(&p), RT_REAL_MAX), depth + 1,
                                       RT_RAY_REFLECTION, p.ray);
@@ -31,7 +32,7 @@ static rt_vec3 trace_ray(const rt_tracer *tr, rt_ray ray, uint32_t depth, rt_ray
             rec->total_internal_reflection = true;
         }
     }
-    if ((rec = rt_raylog_ray(tr->log, p.ray)) != 0) rec->color = color;
+    rt_raylog_color(tr->log, p.ray, color);
     return color;
 }
 

@@ -1,8 +1,11 @@
-/* Whitted-style ray tracing with the sample solution's shading (format §9-§10). */
+/* Whitted-style ray tracing with the sample solution's shading (format.md §8-§9). */
 #ifndef RT_TRACE_H
 #define RT_TRACE_H
 
-#include "raylog.h"
+#include "scene_query.h"
+
+/* The debugger's ray log (raylog.h); the tracer only carries a pointer to it. */
+typedef struct rt_ray_log rt_ray_log;
 
 /* What a camera ray's trace finds at depth 0, known beforehand because the ray and the
  * shadow rays of its hit were traced in packets (render_packet.c): the nearest hit, and

@@ -19,7 +19,7 @@
 
 #define CAPACITY (1u << 16)
 
-static char dir[64], tiny_path[128];
+static char dir[64], tiny_path[128], mc_path[128];
 static rtp_scene built;
 static bool built_open;
 static rtp_pixel_trace pt;
@@ -60,14 +60,57 @@ static const char tiny_scene[] =
     "              Transform: {Rotation: {X: -90}, Scale: {X: 6, Y: 6, Z: 6}}\n"
     "              Plane: {Material: Floor}\n";
 
+/* Monte Carlo: a glossy floor and a red back wall under an area light that the camera
+ * sees (pixel row 0-2), 16x12 pixels, 4 samples per pixel. */
+static const char mc_scene[] =
+    "Materials:\n"
+    "    Glossy:\n"
+    "        Shader: Blinn-Phong Shader\n"
+    "        Uniforms:\n"
+    "            Diffuse: {Color: {R: 0.2, G: 0.3, B: 0.4}}\n"
+    "            Specular: {Color: {R: 0.7, G: 0.7, B: 0.7}}\n"
+    "            Shininess: 50\n"
+    "    Wall:\n"
+    "        Shader: Blinn-Phong Shader\n"
+    "        Uniforms:\n"
+    "            Diffuse: {Color: {R: 0.8, G: 0.2, B: 0.2}}\n"
+    "Root:\n"
+    "    Name: Root\n"
+    "    Children:\n"
+    "        - Name: Eye\n"
+    "          Components:\n"
+    "              Transform: {Translation: {X: 0, Y: 1, Z: 4}}\n"
+    "              Camera: {FOV: 40, Render Width (px): 16, Render Height (px): 12,\n"
+    "                       Trace: {Monte Carlo: 2, Samples Per Pixel: 1, Shadows: 2, Reflections: true,\n"
+    "                               Diffuse Reflection: true, Random Single Branching: false,\n"
+    "                               Maximum Recursion Depth: 3}}\n"
+    "        - Name: Panel\n"
+    "          Components:\n"
+    "              Transform: {Translation: {X: 0, Y: 2, Z: 0}, Rotation: {X: 180}, Scale: {X: 2, Y: 1, Z: 2}}\n"
+    "              AreaLight: {Color: {R: 1, G: 0.9, B: 0.8}, Const Atten: 1, Quad Atten: 0.1}\n"
+    "        - Name: Ground\n"
+    "          Components:\n"
+    "              Transform: {Rotation: {X: -90}, Scale: {X: 8, Y: 8, Z: 8}}\n"
+    "              Plane: {Material: Glossy}\n"
+    "        - Name: Back\n"
+    "          Components:\n"
+    "              Transform: {Translation: {X: 0, Y: 0, Z: -3}, Scale: {X: 8, Y: 8, Z: 8}}\n"
+    "              Plane: {Material: Wall}\n";
+
+static void write_scene(char *path, size_t size, const char *name, const char *text)
+{
+    snprintf(path, size, "%s/%s", dir, name);
+    FILE *f = fopen(path, "wb");
+    cr_assert_not_null(f);
+    fputs(text, f);
+    cr_assert_eq(fclose(f), 0);
+}
+
 static void setup(void)
 {
     cr_assert(tmpdir_make(dir, sizeof dir, "debug"), "cannot create a scratch folder");
-    snprintf(tiny_path, sizeof tiny_path, "%s/tiny.yaml", dir);
-    FILE *f = fopen(tiny_path, "wb");
-    cr_assert_not_null(f);
-    fputs(tiny_scene, f);
-    cr_assert_eq(fclose(f), 0);
+    write_scene(tiny_path, sizeof tiny_path, "tiny.yaml", tiny_scene);
+    write_scene(mc_path, sizeof mc_path, "mc.yaml", mc_scene);
     cr_redirect_stderr();
 }
 
@@ -287,8 +330,9 @@ Test(debug, one_sample_is_that_samples_camera_ray)
 }
 
 /* Every hit's colour is its emission, plus each light's contribution, plus k_s times the
- * reflected and k_t times the refracted colour; each light's contribution is its ambient
- * plus shadow * distance attenuation * light colour * (diffuse + specular). */
+ * reflected (or glossy), k_t times the refracted and k_d times the diffuse colour; each
+ * light's contribution is its ambient plus shadow * distance attenuation * the light's
+ * cosine * light colour * (diffuse + specular). Without single branching. */
 static void expect_terms_add_up(void)
 {
     const rt_scene *scene = &built.scene;
@@ -299,15 +343,15 @@ static void expect_terms_add_up(void)
         rt_vec3 sum = r->emissive;
         for (uint32_t j = pt.first_light[i]; j != RT_NO_PARENT; j = pt.next_light[j]) {
             const rt_light_record *l = &pt.log.lights[j];
-            rt_vec3 light =
-                rt_v3_scale(rt_v3_mul(l->shadow_attenuation, scene->lights[l->light].color), l->distance_attenuation);
+            rt_vec3 light = rt_v3_scale(rt_v3_mul(l->shadow_attenuation, scene->lights[l->light].color),
+                                        rt_mul(l->distance_attenuation, l->light_cosine));
             rt_vec3 want = rt_v3_add(l->ambient, rt_v3_mul(light, rt_v3_add(l->diffuse, l->specular)));
             expect_vec(l->contribution, XYZ(want), 1e-12, "light contribution");
             sum = rt_v3_add(sum, l->contribution);
         }
         for (uint32_t c = pt.first_child[i]; c != RT_NO_PARENT; c = pt.next_sibling[c]) {
             const rt_ray_record *child = &pt.log.rays[c];
-            rt_vec3 weight = child->kind == RT_RAY_REFLECTION ? m.ks : m.kt;
+            rt_vec3 weight = child->kind == RT_RAY_REFRACTION ? m.kt : child->kind == RT_RAY_DIFFUSE ? m.kd : m.ks;
             sum = rt_v3_add(sum, rt_v3_mul(weight, child->color));
         }
         expect_vec(r->color, XYZ(sum), 1e-12, "a ray's colour from its terms");
@@ -325,6 +369,80 @@ Test(debug, the_terms_add_up)
     open_scene(corpus("sphere_refract.yaml"));
     trace(200, 250, RTP_PIXEL_ALL_SAMPLES);
     expect_terms_add_up();
+    open_scene(mc_path);
+    for (uint32_t y = 3; y < 12; y += 2)
+        for (uint32_t x = 0; x < 16; x += 3) {
+            trace(x, y, RTP_PIXEL_ALL_SAMPLES);
+            expect_terms_add_up();
+        }
+}
+
+/* ---- Monte Carlo rays (format.md §11.4) ---- */
+
+Test(debug, monte_carlo_pixels_equal_the_render)
+{
+    static const uint32_t pixels[][2] = {{8, 1}, {2, 1}, {8, 9}, {0, 11}, {15, 3}, {12, 2}};
+    expect_pixels_match_render(mc_path, pixels, 6);
+}
+
+/* A camera ray on the light's square ends there and brings back 64 x its Color. */
+Test(debug, camera_ray_ends_on_the_light)
+{
+    open_scene(mc_path);
+    trace(8, 1, RTP_PIXEL_ALL_SAMPLES);
+    uint32_t n = 0;
+    for (uint32_t id = pt.first_root; id != RT_NO_PARENT; id = pt.next_sibling[id], n++) {
+        const rt_ray_record *r = &pt.log.rays[id];
+        cr_assert(r->on_light, "sample %u missed the light", n);
+        cr_expect_not(r->hit);
+        cr_expect_eq(r->light, 0u);
+        cr_expect_eq(pt.first_child[id], RT_NO_PARENT, "a ray on a light spawns nothing");
+        cr_expect_eq(pt.first_light[id], RT_NO_PARENT, "a ray on a light is not lit");
+        expect_vec(r->color, 64, 57.6, 51.2, 1e-12, "the light's emission");
+        /* It ends on the square: y = 2, |x| and |z| within 1. */
+        rt_vec3 end = rt_v3_madd(r->ray.origin, r->ray.direction, r->ray.t_max);
+        cr_expect(fabs(rt_to_double(end.y) - 2) < 1e-9 && fabs(rt_to_double(end.x)) <= 1 &&
+                      fabs(rt_to_double(end.z)) <= 1,
+                  "ends at (%g, %g, %g)", XYZ(end));
+    }
+    cr_expect_eq(n, 4u);
+    cr_expect_arr_eq(pt.rgb, ((uint8_t[]){255, 255, 255}), 3);
+}
+
+/* On the floor: glossy rays about a unit half vector above the normal, mirrored about it
+ * (or the mirror direction when that fell below); the area light's term carries its
+ * cosine, -N_L . L, with L the shadow ray's direction. */
+Test(debug, glossy_rays_and_the_lights_cosine)
+{
+    open_scene(mc_path);
+    uint32_t glossy = 0, lit = 0;
+    for (uint32_t x = 0; x < 16; x += 5) {
+        trace(x, 9, RTP_PIXEL_ALL_SAMPLES);
+        for (uint32_t i = 0; i < pt.log.ray_count; i++) {
+            const rt_ray_record *r = &pt.log.rays[i];
+            cr_expect_neq(r->kind, RT_RAY_REFLECTION, "a mirror ray in Monte Carlo mode");
+            if (r->kind != RT_RAY_GLOSSY) continue;
+            glossy++;
+            const rt_ray_record *parent = &pt.log.rays[r->parent];
+            rt_vec3 n = parent->normal_used, v = rt_v3_neg(parent->ray.direction), h = r->half_vector;
+            cr_expect(fabs(rt_to_double(rt_v3_length(h)) - 1) < 1e-9 && rt_v3_dot(h, n) >= RT_ZERO);
+            rt_vec3 axis = r->mirror_fallback ? n : h;
+            rt_vec3 want = rt_v3_sub(rt_v3_scale(axis, rt_mul(RT_C(2.0), rt_v3_dot(v, axis))), v);
+            expect_vec(r->ray.direction, XYZ(want), 1e-9, "glossy direction");
+        }
+        for (uint32_t j = 0; j < pt.log.light_count; j++) {
+            const rt_light_record *l = &pt.log.lights[j];
+            uint32_t s = pt.first_shadow[j];
+            if (s == RT_NO_PARENT) continue;
+            lit++;
+            rt_real want = rt_neg(rt_v3_dot(built.scene.lights[0].normal, pt.log.rays[s].ray.direction));
+            cr_expect(fabs(rt_to_double(rt_sub(l->light_cosine, want))) < 1e-9, "light cosine %g, want %g",
+                      rt_to_double(l->light_cosine), rt_to_double(want));
+            cr_expect(l->light_cosine > RT_ZERO && l->light_cosine < RT_ONE);
+        }
+    }
+    cr_expect_gt(glossy, 0u, "no glossy ray");
+    cr_expect_gt(lit, 0u, "no shadow ray reached the light");
 }
 
 Test(debug, a_full_log_cuts_the_tree_not_the_colour)
@@ -397,6 +515,46 @@ Test(debug, json_checker_rejects_what_it_should)
     static const char *const bad[] = {"", "{", "{\"a\" 1}", "[1,]", "nan", "[01]", "{\"a\": 1} x", "\"\\q\"", "[1.]"};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) cr_expect_not(json_is_valid(bad[i]), "%s", bad[i]);
     cr_expect(json_is_valid(" {\"a\": [1, -2.5e-3, true, null, \"\\u00e9\"]} "));
+}
+
+Test(debug, monte_carlo_text_and_json)
+{
+    char *out;
+    cr_assert_eq(debug_cmd(&out, mc_path, "--pixel", "8,1", "--sample", "0", NULL), RTP_EXIT_OK);
+    cr_expect(strstr(out, "ends on light 0 (area), t ") != NULL, "%s", out);
+    cr_expect(strstr(out, "returns (64, 57.6, 51.2)") != NULL, "%s", out);
+    free(out);
+    cr_assert_eq(debug_cmd(&out, mc_path, "--pixel", "8,1", "--sample", "0", "--json", NULL), RTP_EXIT_OK);
+    cr_expect(json_is_valid(out), "%s", out);
+    cr_expect(strstr(out, "\"hit\": null, \"light_hit\": {\"light\": 0, \"kind\": \"area\", \"t\": ") != NULL, "%s",
+              out);
+    cr_expect(strstr(out, "\"emission\": [64, 57.6") != NULL, "%s", out);
+    free(out);
+    cr_assert_eq(debug_cmd(&out, mc_path, "--pixel", "8,9", NULL), RTP_EXIT_OK);
+    cr_expect(strstr(out, "glossy ray, depth 1") != NULL, "%s", out);
+    cr_expect(strstr(out, "half vector (") != NULL, "%s", out);
+    cr_expect(strstr(out, "light 0 (area)") != NULL, "%s", out);
+    cr_expect(strstr(out, "light cosine 0.") != NULL, "%s", out);
+    free(out);
+    cr_assert_eq(debug_cmd(&out, mc_path, "--pixel", "8,9", "--json", NULL), RTP_EXIT_OK);
+    cr_expect(json_is_valid(out), "%s", out);
+    cr_expect(strstr(out, "\"kind\": \"glossy\"") != NULL, "%s", out);
+    cr_expect(strstr(out, "\"half_vector\": [") != NULL, "%s", out);
+    cr_expect(strstr(out, "\"mirror_fallback\": ") != NULL, "%s", out);
+    cr_expect(strstr(out, "\"light_cosine\": 0.") != NULL, "%s", out);
+    cr_expect(strstr(out, "\"light_hit\": null") != NULL, "%s", out);
+    free(out);
+    char svg_path[160];
+    snprintf(svg_path, sizeof svg_path, "%s/mc.svg", dir);
+    cr_assert_eq(debug_cmd(&out, mc_path, "--pixel", "8,9", "--svg", svg_path, NULL), RTP_EXIT_OK);
+    free(out);
+    FILE *f = fopen(svg_path, "rb");
+    cr_assert_not_null(f);
+    static char svg[1 << 21];
+    svg[fread(svg, 1, sizeof svg - 1, f)] = '\0';
+    fclose(f);
+    cr_expect(strstr(svg, "class=\"ray glossy\"") != NULL, "the glossy rays");
+    cr_expect(strstr(svg, "<path class=\"light\"") != NULL, "the light's square");
 }
 
 /* The base64 between `data:image/png;base64,` and the closing quote, decoded. */
@@ -509,5 +667,5 @@ Test(debug, unreadable_scene_and_unwritable_svg)
     free(out);
     cr_expect_eq(debug_cmd(&out, tiny_path, "--pixel", "1,1", "--svg", bad_svg, NULL), RTP_EXIT_OUTPUT);
     free(out);
-    cr_expect_eq(tmpdir_count(dir), 1, "only tiny.yaml: no partial SVG left behind");
+    cr_expect_eq(tmpdir_count(dir), 2, "only tiny.yaml and mc.yaml: no partial SVG left behind");
 }

@@ -1,4 +1,4 @@
-/* Mesh processing: smooth normals, Loop subdivision (§7.4), the built-in Cube and square. */
+/* Mesh processing: smooth normals, Loop subdivision (format.md §6.7), the built-in Cube and square. */
 #include "builtin_mesh.h"
 #include "load/ply.h"
 #include "mesh.h"
@@ -329,7 +329,7 @@ Test(mesh, cube_matches_the_format)
     cr_assert_eq(c.triangle_count, 12);
     cr_assert_not_null(c.normals);
     cr_assert_not_null(c.uvs);
-    /* §7.1: faces back, front, left, right, bottom, top; corner triangles per face. */
+    /* format.md §6.1: faces back, front, left, right, bottom, top; corner triangles per face. */
     static const rt_vec3 face_normal[6] = {{0, 0, -1}, {0, 0, 1}, {-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}};
     static const uint32_t corners[2][6] = {{0, 1, 2, 2, 1, 3}, {1, 0, 2, 1, 2, 3}};
     for (uint32_t f = 0; f < 6; f++) {

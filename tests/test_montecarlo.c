@@ -1,11 +1,15 @@
-/* Monte Carlo rendering (core/rng.c, sample.c, path_trace.c, render_pixel.c): the random
- * numbers, the estimators' expected values (white furnace, caustics rule, single
- * branching, soft shadows), convergence as 1/sqrt(spp), the energy bound, the
- * sample count types, the thin lens, and independence from tiles and threads. */
+/* Monte Carlo rendering (core/rng.c, sample.c, path_trace.c, area_light.c, render_pixel.c):
+ * the random numbers, the estimators' expected values (white furnace, caustics rule,
+ * single branching, soft shadows), the conventions of format.md §11.4 and §11.6 (Lambertian area
+ * lights, lights seen by camera rays only, the Blinn-Phong lobe of glossy rays),
+ * convergence as 1/sqrt(spp), the energy bound, the sample count types, the thin lens,
+ * and independence from tiles and threads. */
+#include "area_light.h"
 #include "builtin_mesh.h"
 #include "cli/cli.h"
 #include "load/scene_open.h"
 #include "path_trace.h"
+#include "raylog.h"
 #include "reference.h"
 #include "render.h"
 #include "thread/threads.h"
@@ -229,6 +233,28 @@ Test(montecarlo, cosine_directions_lie_in_the_hemisphere_with_mean_cosine_two_th
     cr_expect(fabs(mean - 2.0 / 3.0) < 2e-3, "mean cosine %.5f", mean);
 }
 
+/* The Blinn-Phong lobe's half vectors: unit, above n, with E[cos] = (n + 1) / (n + 2)
+ * for a density proportional to cos^n (within 4 standard errors of 4096 draws). */
+Test(montecarlo, half_vectors_follow_the_blinn_phong_lobe)
+{
+    rt_vec3 nrm = rt_v3_normalize(v3(-0.2, 0.9, 0.4));
+    double exponents[3] = {0, 20, 128};
+    enum { N = 4096 };
+    for (int e = 0; e < 3; e++) {
+        double n = exponents[e], mean = 0;
+        for (uint32_t k = 0; k < N; k++) {
+            rt_sampler s = {rt_rng_pixel_key(3, 1), k, 6};
+            rt_vec3 h = rt_sample_blinn_half_vector(rt_sample_2d(&s, 0, RT_PURPOSE_GLOSSY), nrm, rt_from_double(n));
+            double c = rt_to_double(rt_v3_dot(h, nrm));
+            cr_assert(c >= -EXACT, "n = %g: half vector below the surface", n);
+            cr_assert(fabs(rt_to_double(rt_v3_length(h)) - 1) < EXACT);
+            mean += c / N;
+        }
+        double want = (n + 1) / (n + 2), se = sqrt(((n + 1) / (n + 3) - want * want) / N);
+        cr_expect(fabs(mean - want) < 4 * se, "n = %g: mean cosine %.5f, want %.5f (se %.5f)", n, mean, want, se);
+    }
+}
+
 /* ---- Estimators ---- */
 
 /* A closed diffuse enclosure with emission e and albedo rho: every path gathers e at
@@ -316,14 +342,23 @@ Test(montecarlo, random_single_branching_is_unbiased)
     free(b.memory);
 }
 
-/* A floor lit by a 1 x 1 area light 2 above it; a pinhole camera sees the floor point
- * under the light's centre. An opaque half-plane halfway up hides the half x < 0 of the
- * light, which by symmetry halves the light: soft shadows from area sampling. With the
- * light turned to face up, the floor gets nothing. */
-static double floor_under_light(bool blocker, double light_rotation_x)
+/* A floor (k_d 0.8, or with mirror = true k_s 1 and Shininess 10^6) lit by a size x size
+ * area light 2 above it, turned by light_rotation_x degrees about X (180: facing down);
+ * a 1-pixel camera 0.5 above the floor looks straight down (look_up: straight up, at
+ * the light). With a blocker, an opaque half-plane halfway up hides the half x < 0 of
+ * the light. Returns the pixel's red channel. */
+typedef struct {
+    bool blocker, mirror, look_up;
+    double size, light_rotation_x;
+    uint32_t spp_index;
+} floor_scene;
+
+static double floor_under_light(floor_scene f)
 {
     static rt_material mats[1];
-    mats[0] = material(v3(0.8, 0.8, 0.8), v3(0, 0, 0), v3(0, 0, 0));
+    mats[0] = f.mirror ? material(v3(0, 0, 0), v3(1, 1, 1), v3(0, 0, 0))
+                       : material(v3(0.8, 0.8, 0.8), v3(0, 0, 0), v3(0, 0, 0));
+    if (f.mirror) mats[0].shininess = RT_C(1e6);
     static rt_mesh_desc mesh;
     mesh = rt_builtin_mesh_square();
     static rt_object_desc objs[2];
@@ -333,7 +368,7 @@ static double floor_under_light(bool blocker, double light_rotation_x)
     static rt_light_desc light;
     memset(&light, 0, sizeof light);
     light.kind = RT_LIGHT_AREA;
-    light.world = rt_affine_trs(v3(0, 2, 0), v3(light_rotation_x, 0, 0), v3(1, 1, 1));
+    light.world = rt_affine_trs(v3(0, 2, 0), v3(f.light_rotation_x, 0, 0), v3(f.size, 1, f.size));
     light.color = v3(1, 1, 1);
     rt_scene_desc d;
     memset(&d, 0, sizeof d);
@@ -342,13 +377,14 @@ static double floor_under_light(bool blocker, double light_rotation_x)
     d.meshes = &mesh;
     d.mesh_count = 1;
     d.objects = objs;
-    d.object_count = blocker ? 2 : 1;
+    d.object_count = f.blocker ? 2 : 1;
     d.lights = &light;
     d.light_count = 1;
-    d.camera = mc_camera(rt_affine_trs(v3(0, 0.5, 0), v3(-90, 0, 0), v3(1, 1, 1)), 1, 1);
+    d.camera = mc_camera(rt_affine_trs(v3(0, 0.5, 0), v3(f.look_up ? 90 : -90, 0, 0), v3(1, 1, 1)), 1, 1);
     d.camera.trace.shadows = 1;
-    d.camera.trace.reflections = false; /* direct light only */
-    d.camera.trace.samples_per_pixel_index = 4;
+    d.camera.trace.reflections = f.mirror; /* else direct light only */
+    d.camera.trace.diffuse_reflection = false;
+    d.camera.trace.samples_per_pixel_index = f.spp_index;
     built_scene b;
     build(&d, &b);
     rt_vec3 *c = render_colors(&b.scene);
@@ -360,21 +396,121 @@ static double floor_under_light(bool blocker, double light_rotation_x)
 
 Test(montecarlo, area_light_soft_shadow_and_one_sided_emission)
 {
-    double full = floor_under_light(false, 180), half = floor_under_light(true, 180);
+    floor_scene f = {.size = 1, .light_rotation_x = 180, .spp_index = 4};
+    double full = floor_under_light(f);
+    f.blocker = true;
+    double half = floor_under_light(f);
     cr_expect(full > 0.5 && full <= 0.8 + 1e-9, "unshadowed floor %.4f", full);
     cr_expect(fabs(half / full - 0.5) < 0.02, "half-covered light gives %.4f of %.4f", half, full);
-    cr_expect_eq(floor_under_light(false, 0), 0.0, "a light facing away still lights");
+    f.blocker = false;
+    f.light_rotation_x = 0;
+    cr_expect_eq(floor_under_light(f), 0.0, "a light facing away still lights");
+}
+
+/* An area light is a Lambertian emitter (format.md §11.4): a small light straight above
+ * the floor gives k_d = 0.8; turned by 60 degrees it sends cos 60 = half of that. */
+Test(montecarlo, area_light_is_lambertian)
+{
+    floor_scene f = {.size = 0.01, .light_rotation_x = 180, .spp_index = 1};
+    double facing = floor_under_light(f);
+    f.light_rotation_x = 240;
+    double turned = floor_under_light(f);
+    cr_expect(fabs(facing - 0.8) < 1e-4, "light facing the floor: %.6f", facing);
+    cr_expect(fabs(turned - 0.4) < 1e-3, "light turned by 60 degrees: %.6f", turned);
+}
+
+/* A camera ray that meets a light's square from its emitting side brings back the
+ * light's emission, RT_AREA_LIGHT_EMISSION x Color (format.md §11.4); from behind it
+ * passes through. A reflected ray that meets the square does not: the direct term
+ * already counts that light. */
+Test(montecarlo, camera_rays_see_area_lights_and_later_rays_do_not)
+{
+    floor_scene f = {.size = 1, .light_rotation_x = 180, .look_up = true};
+    cr_expect_eq(floor_under_light(f), rt_to_double(RT_AREA_LIGHT_EMISSION), "the light's face");
+    f.light_rotation_x = 0;
+    cr_expect_eq(floor_under_light(f), 0.0, "the light's back");
+    /* Looking down at a sharp mirror: the reflected ray goes straight up into the light. */
+    f = (floor_scene){.size = 1, .light_rotation_x = 180, .mirror = true, .spp_index = 2};
+    double mirror = floor_under_light(f);
+    cr_expect(mirror < 1.0, "a reflected ray collected the light's emission: %.4f", mirror);
+}
+
+/* The glossy branch mirrors the view vector about half vectors drawn from the
+ * Blinn-Phong lobe of exponent Shininess (format.md §11.6): for a density proportional to
+ * cos^n, E[cos] = (n + 1) / (n + 2). Read from the ray log of 256 samples of a glossy
+ * floor (k_s 1, k_d 0, Shininess 20) seen at 45 degrees. */
+Test(montecarlo, glossy_rays_sample_the_blinn_phong_lobe)
+{
+    static rt_material m;
+    m = material(v3(0, 0, 0), v3(1, 1, 1), v3(0, 0, 0));
+    m.shininess = RT_C(20.0);
+    static rt_mesh_desc mesh;
+    mesh = rt_builtin_mesh_square();
+    static rt_object_desc floor;
+    floor.kind = RT_SHAPE_MESH;
+    floor.world = rt_affine_trs(v3(0, 0, 0), v3(-90, 0, 0), v3(20, 20, 1));
+    rt_scene_desc d;
+    memset(&d, 0, sizeof d);
+    d.materials = &m;
+    d.material_count = 1;
+    d.meshes = &mesh;
+    d.mesh_count = 1;
+    d.objects = &floor;
+    d.object_count = 1;
+    d.camera = mc_camera(rt_affine_trs(v3(0, 1, 1), v3(-45, 0, 0), v3(1, 1, 1)), 1, 1);
+    d.camera.trace.max_depth = 1;
+    d.camera.trace.samples_per_pixel_index = 4;
+    built_scene b;
+    build(&d, &b);
+    static rt_ray_record rays[1 << 12];
+    static rt_light_record lights[1 << 12];
+    rt_ray_log log = {.rays = rays, .ray_capacity = 1 << 12, .lights = lights, .light_capacity = 1 << 12};
+    rt_tracer tr = {.scene = &b.scene, .use_bvh = true, .log = &log};
+    rt_render_pixel(&tr, 0, 0);
+    cr_assert_not(log.overflow);
+    double mean = 0, n = 20;
+    uint32_t count = 0, fallbacks = 0;
+    for (uint32_t i = 0; i < log.ray_count; i++) {
+        const rt_ray_record *r = &rays[i];
+        cr_assert_neq(r->kind, RT_RAY_REFLECTION, "a mirror ray in Monte Carlo mode");
+        if (r->kind != RT_RAY_GLOSSY) continue;
+        const rt_ray_record *parent = &rays[r->parent];
+        rt_vec3 nrm = parent->normal_used, v = rt_v3_neg(parent->ray.direction), h = r->half_vector;
+        double cos_h = rt_to_double(rt_v3_dot(nrm, h));
+        cr_expect(fabs(rt_to_double(rt_v3_length(h)) - 1) < EXACT && cos_h >= 0, "not a unit half vector above N");
+        rt_vec3 about_h = rt_v3_sub(rt_v3_scale(h, rt_mul(RT_C(2.0), rt_v3_dot(v, h))), v);
+        rt_vec3 mirror = rt_v3_sub(rt_v3_scale(nrm, rt_mul(RT_C(2.0), rt_v3_dot(v, nrm))), v);
+        rt_vec3 want = r->mirror_fallback ? mirror : about_h;
+        cr_expect(rt_to_double(rt_v3_length(rt_v3_sub(r->ray.direction, want))) < 1e-6, "direction not R(h)");
+        cr_expect(r->mirror_fallback || rt_v3_dot(r->ray.direction, nrm) > RT_ZERO);
+        fallbacks += r->mirror_fallback;
+        mean += cos_h;
+        count++;
+    }
+    cr_assert_eq(count, 256u, "one glossy ray per sample");
+    mean /= count;
+    /* Var(cos) = (n + 1) / (n + 3) - E[cos]^2; 256 samples, within 4 standard errors. */
+    double want = (n + 1) / (n + 2), se = sqrt(((n + 1) / (n + 3) - want * want) / count);
+    fprintf(stderr, "montecarlo: glossy n = 20: mean cos(theta_H) %.5f, want %.5f (se %.5f), %u fallbacks\n", mean,
+            want, se, fallbacks);
+    cr_expect(fabs(mean - want) < 4 * se, "mean cos(theta_H) %.5f, want %.5f", mean, want);
+    free(b.memory);
 }
 
 /* ---- Convergence and energy on the corpus Cornell box ---- */
 
+static double channel(rt_vec3 c, int ch) { return rt_to_double(ch == 0 ? c.x : ch == 1 ? c.y : c.z); }
+
+/* Over colours clamped to [0, 1] as the image stores them: the lights' squares, which
+ * camera rays see far above 1, count as the white they show. */
 static double rms_error(const rt_vec3 *a, const rt_vec3 *b, uint32_t n)
 {
     double s = 0;
-    for (uint32_t i = 0; i < n; i++) {
-        rt_vec3 d = rt_v3_sub(a[i], b[i]);
-        s += rt_to_double(rt_v3_dot(d, d));
-    }
+    for (uint32_t i = 0; i < n; i++)
+        for (int ch = 0; ch < 3; ch++) {
+            double d = fmin(fmax(channel(a[i], ch), 0), 1) - fmin(fmax(channel(b[i], ch), 0), 1);
+            s += d * d;
+        }
     return sqrt(s / (3.0 * n));
 }
 
@@ -401,21 +537,30 @@ Test(montecarlo, error_falls_as_one_over_sqrt_spp, .timeout = 120)
     rtp_scene_close(&b);
 }
 
-/* No pixel is brighter than a path can carry. Per channel, each of the depth + 1 hits
- * adds at most E = max k_e + sum over lights of (max k_d * ambient + colour * A *
- * (max k_d + max k_s)), A = min(1, 1 / Const Atten) bounding the distance attenuation
- * and cosines <= 1, and each bounce weighs at most W = max (k_d + k_s + k_t), the
- * maxima over the materials objects use. */
-static double channel(rt_vec3 c, int ch) { return rt_to_double(ch == 0 ? c.x : ch == 1 ? c.y : c.z); }
+/* No sample is brighter than a path can carry, except a camera ray that ends on a
+ * light's square: it brings back exactly that light's emission (format.md §11.4). Per
+ * channel, each of the depth + 1 hits adds at most E = max k_e + sum over lights of
+ * (max k_d * ambient + colour * A * (max k_d + max k_s)), A = min(1, 1 / Const Atten)
+ * bounding the distance attenuation and cosines (N.L, the light's, the lobe's) <= 1,
+ * and each bounce weighs at most W = max (k_d + k_s + k_t), the maxima over the
+ * materials objects use. */
+static bool is_a_lights_emission(const rt_scene *s, rt_vec3 c)
+{
+    for (uint32_t i = 0; i < s->light_count; i++) {
+        rt_vec3 e = rt_v3_scale(s->lights[i].color, RT_AREA_LIGHT_EMISSION);
+        if (s->lights[i].kind == RT_LIGHT_AREA && c.x == e.x && c.y == e.y && c.z == e.z) return true;
+    }
+    return false;
+}
 
-Test(montecarlo, no_pixel_brighter_than_the_bound)
+Test(montecarlo, no_sample_brighter_than_the_bound)
 {
     rtp_scene b = open_corpus("more/cornell_ray.yaml", 16);
     const rt_scene *s = &b.scene;
     b.scene.camera.trace.samples_per_pixel_index = 2;
-    rt_vec3 *c = render_colors(s);
+    double bound[3], brightest[3] = {0, 0, 0};
     for (int ch = 0; ch < 3; ch++) {
-        double ke = 0, kd = 0, ks = 0, w = 0, brightest = 0;
+        double ke = 0, kd = 0, ks = 0, w = 0;
         for (uint32_t i = 0; i < s->object_count; i++) {
             const rt_material *m = &s->materials[s->objects[i].material];
             ke = fmax(ke, channel(m->emissive.color, ch));
@@ -430,16 +575,31 @@ Test(montecarlo, no_pixel_brighter_than_the_bound)
             double a = rt_to_double(l->atten_const) > 1 ? 1 / rt_to_double(l->atten_const) : 1;
             e += kd * channel(l->ambient, ch) + channel(l->color, ch) * a * (kd + ks);
         }
-        double bound = finite_sum(e, w, s->camera.trace.max_depth);
-        for (uint32_t p = 0; p < 256; p++) {
-            cr_expect(channel(c[p], ch) <= bound, "pixel %u channel %d: %.4f above %.4f", p, ch, channel(c[p], ch),
-                      bound);
-            brightest = fmax(brightest, channel(c[p], ch));
-        }
-        fprintf(stderr, "montecarlo: cornell 16x16 channel %d: brightest %.4f, bound %.4f\n", ch, brightest, bound);
-        cr_expect(brightest > 0.3, "the box is dark: %.4f", brightest);
+        bound[ch] = finite_sum(e, w, s->camera.trace.max_depth);
     }
-    free(c);
+    rt_tracer tr = {.scene = s, .use_bvh = true};
+    uint32_t on_light = 0;
+    for (uint32_t y = 0; y < 16; y++)
+        for (uint32_t x = 0; x < 16; x++)
+            for (uint32_t k = 0; k < 16; k++) {
+                rt_vec3 c = rt_render_sample(&tr, x, y, k);
+                if (is_a_lights_emission(s, c)) {
+                    on_light++;
+                    continue;
+                }
+                for (int ch = 0; ch < 3; ch++) {
+                    cr_expect(channel(c, ch) <= bound[ch], "pixel (%u, %u) sample %u channel %d: %.4f above %.4f", x, y,
+                              k, ch, channel(c, ch), bound[ch]);
+                    brightest[ch] = fmax(brightest[ch], channel(c, ch));
+                }
+            }
+    for (int ch = 0; ch < 3; ch++) {
+        fprintf(stderr, "montecarlo: cornell 16x16 channel %d: brightest sample %.4f, bound %.4f\n", ch, brightest[ch],
+                bound[ch]);
+        cr_expect(brightest[ch] > 0.3, "the box is dark: %.4f", brightest[ch]);
+    }
+    fprintf(stderr, "montecarlo: cornell 16x16: %u of 4096 samples end on a light\n", on_light);
+    cr_expect(on_light > 0, "no camera ray saw the lights' squares");
     rtp_scene_close(&b);
 }
 
@@ -450,7 +610,7 @@ static uint32_t camera_rays(const rt_scene *scene, uint32_t x, uint32_t y)
 {
     static rt_ray_record rays[1 << 16];
     static rt_light_record lights[1 << 16];
-    rt_ray_log log = {rays, 0, 1 << 16, lights, 0, 1 << 16, false};
+    rt_ray_log log = {.rays = rays, .ray_capacity = 1 << 16, .lights = lights, .light_capacity = 1 << 16};
     rt_tracer tr = {.scene = scene, .use_bvh = true, .log = &log};
     rt_render_pixel(&tr, x, y);
     cr_assert_not(log.overflow);

@@ -1,21 +1,14 @@
 /* `rtk debug --json`: the ray tree as one JSON document. Rays nest: a ray's "lights"
- * hold the shadow rays sent to each light, its "children" the reflected and refracted rays. */
+ * hold the shadow rays sent to each light, its "children" the reflected, refracted,
+ * diffuse and glossy rays. A camera ray that ends on an area light's square (Monte
+ * Carlo mode) has "hit": null and names the light in "light_hit". */
 #include "debug/debug_output.h"
 
 #include "debug/json_out.h"
 
 static void num(FILE *out, rt_real r) { rtp_json_number(out, rt_to_double(r)); }
 
-static void vec(FILE *out, rt_vec3 v)
-{
-    fputc('[', out);
-    num(out, v.x);
-    fputs(", ", out);
-    num(out, v.y);
-    fputs(", ", out);
-    num(out, v.z);
-    fputc(']', out);
-}
+static void vec(FILE *out, rt_vec3 v) { rtp_json_vec3(out, rt_to_double(v.x), rt_to_double(v.y), rt_to_double(v.z)); }
 
 /* ", \"name\": " */
 static void key(FILE *out, const char *name) { fprintf(out, ", \"%s\": ", name); }
@@ -87,6 +80,20 @@ static void hit(FILE *out, const rtp_pixel_trace *pt, const rt_ray_record *r)
     fprintf(out, ", \"total_internal_reflection\": %s}", r->total_internal_reflection ? "true" : "false");
 }
 
+/* The area light whose square the ray ends on, where, and the emission it brings back. */
+static void light_hit(FILE *out, const rtp_pixel_trace *pt, const rt_ray_record *r)
+{
+    fprintf(out, "{\"light\": %u, \"kind\": \"%s\"", r->light,
+            rtp_pixel_trace_light_kind(pt->built->scene.lights[r->light].kind));
+    key(out, "t");
+    num(out, r->ray.t_max);
+    key(out, "point");
+    vec(out, rt_v3_madd(r->ray.origin, r->ray.direction, r->ray.t_max));
+    key(out, "emission");
+    vec(out, r->color);
+    fputc('}', out);
+}
+
 static void ray(FILE *out, const rtp_pixel_trace *pt, uint32_t id, unsigned level);
 
 /* The rays of a list, as the elements of a JSON array. */
@@ -118,6 +125,8 @@ static void light(FILE *out, const rtp_pixel_trace *pt, uint32_t j, unsigned lev
     vec(out, l->specular);
     key(out, "distance_attenuation");
     num(out, l->distance_attenuation);
+    key(out, "light_cosine");
+    num(out, l->light_cosine);
     key(out, "shadow_attenuation");
     vec(out, l->shadow_attenuation);
     key(out, "contribution");
@@ -136,9 +145,19 @@ static void ray(FILE *out, const rtp_pixel_trace *pt, uint32_t id, unsigned leve
     vec(out, r->ray.origin);
     key(out, "direction");
     vec(out, r->ray.direction);
+    if (r->kind == RT_RAY_GLOSSY) {
+        key(out, "half_vector");
+        vec(out, r->half_vector);
+        fprintf(out, ", \"mirror_fallback\": %s", r->mirror_fallback ? "true" : "false");
+    }
     key(out, "hit");
     if (r->hit)
         hit(out, pt, r);
+    else
+        fputs("null", out);
+    key(out, "light_hit");
+    if (r->on_light)
+        light_hit(out, pt, r);
     else
         fputs("null", out);
     key(out, "lights");

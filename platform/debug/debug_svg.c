@@ -25,6 +25,7 @@ static const char style[] = "<style>\n"
                             ".refraction{stroke:#d7301f;fill:#d7301f}\n"
                             ".shadow{stroke:#e69500;fill:#e69500;stroke-dasharray:5 3}\n"
                             ".diffuse{stroke:#7b3fa0;fill:#7b3fa0}\n"
+                            ".glossy{stroke:#0f9d9a;fill:#0f9d9a}\n"
                             ".light{fill:#ffd700;stroke:#8a6d00}\n"
                             ".mark{fill:none;stroke-width:2}\n"
                             "</style>\n";
@@ -75,6 +76,10 @@ static void world_window(const rtp_pixel_trace *pt, const rt_aabb *bounds, doubl
             to_doubles(bounds[r->surface.object].hi, p);
             grow(lo, hi, p);
         }
+        if (r->on_light) {
+            to_doubles(rt_v3_madd(r->ray.origin, r->ray.direction, r->ray.t_max), p);
+            grow(lo, hi, p);
+        }
         if (r->kind == RT_RAY_SHADOW && scene->lights[r->light].kind != RT_LIGHT_DIRECTIONAL) {
             to_doubles(scene->lights[r->light].position, p);
             grow(lo, hi, p);
@@ -95,7 +100,8 @@ static void world_window(const rtp_pixel_trace *pt, const rt_aabb *bounds, doubl
     for (int k = 0; k < 3; k++) lo[k] -= margin, hi[k] += margin;
 }
 
-/* A ray from its origin to its hit, or (a miss) on past the panel's edge. */
+/* A ray from its origin to its hit (or the light's square it ends on), or (a miss) on
+ * past the panel's edge. */
 static void draw_ray(FILE *out, const rtp_svg_view *v, const rt_ray_record *r)
 {
     const char *cls = rtp_pixel_trace_ray_kind(r->kind);
@@ -114,7 +120,22 @@ static void draw_ray(FILE *out, const rtp_svg_view *v, const rt_ray_record *r)
             "<line class=\"ray %s\" x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\">"
             "<title>%s ray, depth %u</title></line>\n",
             cls, x0, y0, x1, y1, cls, r->depth);
-    if (r->hit) fprintf(out, "<circle class=\"%s\" cx=\"%.2f\" cy=\"%.2f\" r=\"2.5\"/>\n", cls, x1, y1);
+    if (r->hit || r->on_light) fprintf(out, "<circle class=\"%s\" cx=\"%.2f\" cy=\"%.2f\" r=\"2.5\"/>\n", cls, x1, y1);
+}
+
+/* An area light's square (what Monte Carlo mode samples and camera rays see). */
+static void area_light(FILE *out, const rtp_svg_view *v, const rt_light *l)
+{
+    rt_vec3 corners[4] = {l->corner, rt_v3_add(l->corner, l->edge_u),
+                          rt_v3_add(rt_v3_add(l->corner, l->edge_u), l->edge_v), rt_v3_add(l->corner, l->edge_v)};
+    fputs("<path class=\"light\" fill-opacity=\"0.5\" d=\"", out);
+    for (int k = 0; k < 4; k++) {
+        double p[3], x, y;
+        to_doubles(corners[k], p);
+        rtp_svg_view_map(v, p, &x, &y);
+        fprintf(out, "%c%.2f %.2f", k ? 'L' : 'M', x, y);
+    }
+    fputs("Z\"/>\n", out);
 }
 
 static void projection(FILE *out, const rtp_pixel_trace *pt, const rt_aabb *bounds, rtp_svg_view *v, const double lo[3],
@@ -136,6 +157,7 @@ static void projection(FILE *out, const rtp_pixel_trace *pt, const rt_aabb *boun
         rtp_svg_view_map(v, p, &x, &y);
         fprintf(out, "<circle class=\"light\" cx=\"%.1f\" cy=\"%.1f\" r=\"5\"><title>light %u</title></circle>\n", x, y,
                 i);
+        if (scene->lights[i].kind == RT_LIGHT_AREA) area_light(out, v, &scene->lights[i]);
     }
     for (uint32_t i = 0; i < pt->log.ray_count; i++) draw_ray(out, v, &pt->log.rays[i]);
     fputs("</g>\n", out);
@@ -170,18 +192,18 @@ static bool image_panel(FILE *out, const rtp_pixel_trace *pt, const rtp_image *i
 static void legend(FILE *out, double y)
 {
     double x = GAP;
-    for (rt_ray_kind k = RT_RAY_CAMERA; k <= RT_RAY_DIFFUSE; k++, x += 130) {
+    for (rt_ray_kind k = RT_RAY_CAMERA; k <= RT_RAY_GLOSSY; k++, x += 130) {
         const char *kind = rtp_pixel_trace_ray_kind(k);
         fprintf(out, "<line class=\"ray %s\" x1=\"%.0f\" y1=\"%.0f\" x2=\"%.0f\" y2=\"%.0f\"/>", kind, x, y - 4, x + 28,
                 y - 4);
         fprintf(out, "<text x=\"%.0f\" y=\"%.0f\">%s ray</text>\n", x + 34, y, kind);
     }
     fprintf(out, "<circle class=\"light\" cx=\"%.0f\" cy=\"%.0f\" r=\"5\"/>", x + 8, y - 4);
-    fprintf(out, "<text x=\"%.0f\" y=\"%.0f\">point light</text>\n", x + 18, y);
+    fprintf(out, "<text x=\"%.0f\" y=\"%.0f\">light (and area square)</text>\n", x + 18, y);
     fprintf(out,
             "<line class=\"mesh\" x1=\"%.0f\" y1=\"%.0f\" x2=\"%.0f\" y2=\"%.0f\"/><text x=\"%.0f\" y=\"%.0f\">"
             "object outline (dots: hits)</text>\n",
-            x + 120, y - 4, x + 148, y - 4, x + 154, y);
+            x + 180, y - 4, x + 208, y - 4, x + 214, y);
 }
 
 static bool draw(FILE *out, const rtp_pixel_trace *pt, const rtp_image *img, const rt_aabb *bounds, char *err,

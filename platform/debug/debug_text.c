@@ -74,7 +74,8 @@ static void print_light(FILE *out, const rtp_pixel_trace *pt, uint32_t j, unsign
     vec(out, l->specular);
     fprintf(out, "\n");
     indent(out, level + 1);
-    fprintf(out, "distance attenuation " NUM "  shadow attenuation ", rt_to_double(l->distance_attenuation));
+    fprintf(out, "distance attenuation " NUM "  light cosine " NUM "  shadow attenuation ",
+            rt_to_double(l->distance_attenuation), rt_to_double(l->light_cosine));
     vec(out, l->shadow_attenuation);
     fprintf(out, "  contribution ");
     vec(out, l->contribution);
@@ -95,8 +96,20 @@ static void print_ray(FILE *out, const rtp_pixel_trace *pt, uint32_t id, unsigne
     fprintf(out, "  direction ");
     vec(out, r->ray.direction);
     fprintf(out, "\n");
+    if (r->kind == RT_RAY_GLOSSY) {
+        indent(out, level + 1);
+        fprintf(out, "half vector ");
+        vec(out, r->half_vector);
+        fprintf(out, r->mirror_fallback ? "  (its reflection fell below the surface: mirror direction)\n" : "\n");
+    }
     if (r->hit) {
         print_hit(out, pt, r, level + 1);
+    } else if (r->on_light) {
+        indent(out, level + 1);
+        fprintf(out, "ends on light %u (%s), t " NUM ", point ", r->light,
+                rtp_pixel_trace_light_kind(pt->built->scene.lights[r->light].kind), rt_to_double(r->ray.t_max));
+        vec(out, rt_v3_madd(r->ray.origin, r->ray.direction, r->ray.t_max));
+        fprintf(out, "\n");
     } else {
         indent(out, level + 1);
         fprintf(out, "no hit\n");

@@ -25,3 +25,14 @@ void rtp_json_number(FILE *out, double d)
     else
         fputs("null", out);
 }
+
+void rtp_json_vec3(FILE *out, double x, double y, double z)
+{
+    fputc('[', out);
+    rtp_json_number(out, x);
+    fputs(", ", out);
+    rtp_json_number(out, y);
+    fputs(", ", out);
+    rtp_json_number(out, z);
+    fputc(']', out);
+}

@@ -124,7 +124,7 @@ rtp_hit_material rtp_pixel_trace_material(const rtp_pixel_trace *pt, const rt_ra
 
 const char *rtp_pixel_trace_ray_kind(rt_ray_kind kind)
 {
-    static const char *const names[] = {"camera", "reflection", "refraction", "shadow", "diffuse"};
+    static const char *const names[] = {"camera", "reflection", "refraction", "shadow", "diffuse", "glossy"};
     return names[kind];
 }
 

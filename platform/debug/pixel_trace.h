@@ -4,6 +4,7 @@
 #define RTP_PIXEL_TRACE_H
 
 #include "load/scene_open.h"
+#include "raylog.h"
 #include "render.h"
 
 #define RTP_PIXEL_ALL_SAMPLES UINT32_MAX

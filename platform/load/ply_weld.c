@@ -1,7 +1,7 @@
 /* Vertex welding: the course's mesh importer joins vertices whose attributes are
  * identical, so a file that repeats a corner per face (sculpt.ply: 31059 vertices for
  * 10353 faces) becomes one connected surface. Loop subdivision finds neighbours by
- * index (format §7.4) and needs that; rendering at level 0 is unchanged. */
+ * index (format.md §6.7) and needs that; rendering at level 0 is unchanged. */
 #include "load/ply_weld.h"
 
 #include "hash.h"

@@ -1,4 +1,4 @@
-/* The CSE457 YAML scene loader (docs/scene-format.md §1-§8). Sections are read in the
+/* The CSE457 YAML scene loader (docs/format.md §2-§7). Sections are read in the
  * skeleton's order -- Textures, Meshes, ShaderPrograms, Materials, Root -- whatever
  * their order in the file, and only what the tracer sees reaches the description:
  * materials whose shader is trace compatible, the geometry that uses them, and the
@@ -149,7 +149,7 @@ static rt_vec3 vec3(const double v[3])
     return rt_v3(rt_from_double(v[0]), rt_from_double(v[1]), rt_from_double(v[2]));
 }
 
-/* The skeleton's 8-bit material colour (format §6.2): the float product c * 255,
+/* The skeleton's 8-bit material colour (format.md §4.5): the float product c * 255,
  * truncated, then byte / 255. */
 static rt_real quantise(double c)
 {
@@ -204,7 +204,7 @@ static bool mesh_entry(loader *L, const rtp_yaml_node *key, const rtp_yaml_node 
            index_name(L, &L->mesh_names_ix, key->text, L->meshes.count - 1);
 }
 
-/* Undefined shader programs are not traced, except these two built-ins (format §3.4). */
+/* Undefined shader programs are not traced, except these two built-ins (format.md §4.3). */
 static bool builtin_traced(const char *shader)
 {
     return !strcmp(shader, "Blinn-Phong Shader") || !strcmp(shader, "Toon Shader");
@@ -219,7 +219,7 @@ static bool shader_entry(loader *L, const rtp_yaml_node *key, const rtp_yaml_nod
            index_name(L, &L->shader_names_ix, key->text, L->shaders.count - 1);
 }
 
-/* A colour channel (format §6.2): a quantised solid colour, or a texture replacing it. */
+/* A colour channel (format.md §4.5): a quantised solid colour, or a texture replacing it. */
 static bool load_channel(loader *L, const rtp_yaml_node *uniforms, const char *key, double def, rt_channel *out)
 {
     rtp_yaml *y = &L->y;
@@ -284,7 +284,7 @@ static bool material_entry(loader *L, const rtp_yaml_node *key, const rtp_yaml_n
 
 /* ---- Components ---- */
 
-/* Camera settings (format §5.1); a NULL map gives the skeleton's defaults. */
+/* Camera settings (format.md §5.3); a NULL map gives the skeleton's defaults. */
 static bool read_camera(rtp_yaml *y, const rtp_yaml_node *c, const rt_affine *world, rt_camera_desc *cam)
 {
     rt_trace_settings *s = &cam->trace;
@@ -342,7 +342,7 @@ static bool load_camera(loader *L, const rtp_yaml_node *c, const rt_affine *worl
     return true;
 }
 
-/* Lights (format §5.2). Their colours are used as written, not quantised. */
+/* Lights (format.md §5.4). Their colours are used as written, not quantised. */
 static bool load_light(loader *L, const rtp_yaml_node *c, rt_light_kind kind, const rt_affine *world)
 {
     rtp_yaml *y = &L->y;
@@ -414,7 +414,7 @@ static bool load_quadric(loader *L, const rtp_yaml_node *c, rt_shape_kind kind, 
     return material == UNSET || add_object(L, kind, world, material, source);
 }
 
-/* A Plane is the built-in unit square, traced as a mesh (format §5.5). */
+/* A Plane is the built-in unit square, traced as a mesh (format.md §5.7). */
 static bool load_plane(loader *L, const rtp_yaml_node *c, const rt_affine *world, uint32_t source)
 {
     uint32_t material;
@@ -485,7 +485,7 @@ static bool load_component(loader *L, const rtp_yaml_node *key, const rtp_yaml_n
 
 /* ---- Node tree ---- */
 
-/* parent * T * R * S of the node's Transform component (format §4.2). */
+/* parent * T * R * S of the node's Transform component (format.md §5.2). */
 static bool node_transform(rtp_yaml *y, const rtp_yaml_node *components, const rt_affine *parent, rt_affine *world)
 {
     rtp_yaml_node *t;
@@ -503,7 +503,7 @@ static bool node_transform(rtp_yaml *y, const rtp_yaml_node *components, const r
     return true;
 }
 
-/* Adds node and its subtree unless it is disabled (format §4). */
+/* Adds node and its subtree unless it is disabled (format.md §5). */
 static bool load_node(loader *L, const rtp_yaml_node *node, const rt_affine *parent, unsigned depth)
 {
     rtp_yaml *y = &L->y;
@@ -547,7 +547,7 @@ static bool load_sections(loader *L)
     rtp_yaml_node *root;
     rt_affine identity = rt_affine_identity();
     if (top->kind != RTP_YAML_MAP) return rtp_yaml_expected(y, top, NULL, "a scene (a YAML map)");
-    /* Cubemaps are never sampled by the tracer (format §3.2). */
+    /* Cubemaps are never sampled by the tracer (format.md §2.4). */
     if (!for_each_entry(L, top, "Textures", texture_entry) || !for_each_entry(L, top, "Meshes", mesh_entry) ||
         !for_each_entry(L, top, "ShaderPrograms", shader_entry) ||
         !for_each_entry(L, top, "Materials", material_entry) || !rtp_yaml_map(y, top, "Root", true, &root))
@@ -555,7 +555,7 @@ static bool load_sections(loader *L)
     size_t mark = rtp_yaml_push(y, "Root");
     if (!load_node(L, root, &identity, 0)) return false;
     rtp_yaml_pop(y, mark);
-    if (!L->have_camera) { /* the skeleton's default camera (format §5.1) */
+    if (!L->have_camera) { /* the skeleton's default camera (format.md §5.3) */
         rt_affine at = identity;
         at.translation = rt_v3(RT_ZERO, RT_ZERO, rt_from_double(2.5));
         return read_camera(y, NULL, &at, &L->camera);
@@ -565,7 +565,7 @@ static bool load_sections(loader *L)
 
 /* ---- Asset files ---- */
 
-/* The folder asset paths are relative to (format §2): the parent of the nearest
+/* The folder asset paths are relative to (format.md §3): the parent of the nearest
  * ancestor of the scene's folder named "assets", else the scene's folder; for a scene
  * read from standard input, the working folder. */
 static bool find_root(loader *L, const char *scene_path, const char *assets_root)

@@ -26,7 +26,7 @@ typedef struct {
 } rtp_loaded_scene;
 
 /* Loads path. assets_root is the folder that contains assets/, or NULL to find it from
- * the scene file's location (format §2). On failure returns false with one line in err
+ * the scene file's location (format.md §3). On failure returns false with one line in err
  * (no newline) such as "scene.yaml:12:9: Shininess: expected a number, got 'abc'" or
  * "scene.yaml:40:17: Meshes/Knight/Path: cannot open '/x/assets/knight.ply': No such file
  * or directory"; *out is then empty and needs no free. */

@@ -2,6 +2,7 @@
 #include "part/part_cut.h"
 
 #include "mem/mem.h"
+#include "raylog.h"
 #include "thread/threads.h"
 
 /* Rays and light terms one estimated sample may log; past that it counts as this many. */

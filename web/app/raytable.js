@@ -26,7 +26,8 @@ function swatch(c) {
   return `<span class="swatch" style="background: rgb(${b.join(',')})"></span>`;
 }
 
-function hitCell(hit) {
+function hitCell(hit, ray) {
+  if (!hit && ray.light_hit) return `<b>light L${ray.light_hit.light}</b><br><span class="muted">its square, emission ${vec(ray.light_hit.emission)}</span>`;
   if (!hit) return '<span class="muted">no hit</span>';
   let what = hit.primitive + (hit.part ? ` ${hit.part}` : '') + (hit.triangle !== null ? ` #${hit.triangle}` : '');
   return `<b>${esc(hit.node)}</b><br><span class="muted">${esc(what)}</span>`;
@@ -36,7 +37,7 @@ function lightsCell(ray) {
   return ray.lights.map((l) =>
     `<div class="light-term"><b>L${l.light}</b> ${l.kind}: N·L ${g9(l.n_dot_l)}, N·H ${g9(l.n_dot_h)}<br>` +
     `ambient ${vec(l.ambient)} diffuse ${vec(l.diffuse)} specular ${vec(l.specular)}<br>` +
-    `distance atten. ${g9(l.distance_attenuation)}, shadow ${vec(l.shadow_attenuation)} → ${swatch(l.contribution)}${vec(l.contribution)}</div>`).join('');
+    `distance atten. ${g9(l.distance_attenuation)}${l.light_cosine !== undefined && l.light_cosine !== 1 ? `, cosine at the light ${g9(l.light_cosine)}` : ''}, shadow ${vec(l.shadow_attenuation)} → ${swatch(l.contribution)}${vec(l.contribution)}</div>`).join('');
 }
 
 function materialCell(hit) {
@@ -50,11 +51,11 @@ export function fillRayTable(tbody, doc, onHover) {
   const rows = flattenRays(doc);
   tbody.innerHTML = rows.map(({ ray, level, sample }, i) => {
     const style = ray.kind === 'shadow' ? shadowStyle(ray) : RAY_STYLE[ray.kind] ? ray.kind : 'other';
-    const label = ray.kind === 'shadow' ? `shadow → L${ray.light}` : ray.kind;
+    const label = ray.kind === 'shadow' ? `shadow → L${ray.light}` : ray.half_vector ? `${ray.kind} (H ${vec(ray.half_vector)})` : ray.kind;
     return `<tr data-index="${i}" data-kind="${esc(ray.kind)}" data-sample="${sample}">` +
       `<td class="kind" style="padding-left:${0.5 + level * 1.1}em"><span class="ray-dot" style="background:${RAY_STYLE[style].color}"></span>${esc(label)}</td>` +
       `<td class="depth">${ray.depth}</td>` +
-      `<td class="node">${hitCell(ray.hit)}</td>` +
+      `<td class="node">${hitCell(ray.hit, ray)}</td>` +
       `<td class="t">${ray.hit ? g9(ray.hit.t) : ''}</td>` +
       `<td class="point">${ray.hit ? vec(ray.hit.point) : `<span class="muted">dir ${vec(ray.direction)}</span>`}</td>` +
       `<td class="material">${materialCell(ray.hit)}</td>` +

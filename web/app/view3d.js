@@ -15,6 +15,8 @@ export const RAY_STYLE = {
   camera: { color: '#f5f5f5', label: 'camera ray (to the centre of projection)' },
   reflection: { color: '#4da3ff', label: 'reflection' },
   refraction: { color: '#3ddc84', label: 'refraction' },
+  diffuse: { color: '#c8a2ff', label: 'diffuse bounce (Monte Carlo)' },
+  glossy: { color: '#00d2d3', label: 'glossy reflection about a sampled half vector (Monte Carlo)' },
   shadow: { color: '#ffd84d', label: 'shadow ray, reaches the light' },
   'shadow-partial': { color: '#ff9f43', label: 'shadow ray through a transparent object' },
   'shadow-blocked': { color: '#ff4d4d', label: 'shadow ray, blocked (× at the blocker)' },
@@ -189,8 +191,10 @@ export class SceneView {
     this.objects.add(frustum);
   }
 
-  // The end of a ray that hit nothing: towards its light, or out of the scene.
+  // The end of a ray that hit nothing: on the light's square it ends on, towards its
+  // light, or out of the scene.
   missEnd(ray) {
+    if (ray.light_hit) return v3(ray.light_hit.point);
     const o = v3(ray.origin), d = v3(ray.direction).normalize();
     const light = ray.kind === 'shadow' ? this.view.lights[ray.light] : null;
     const len = light && light.kind !== 'directional' ? v3(light.position).distanceTo(o) : this.radius * 1.5;

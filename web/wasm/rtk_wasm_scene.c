@@ -9,13 +9,8 @@
 
 static void vec(const char *key, rt_vec3 v)
 {
-    printf("\"%s\": [", key);
-    rtp_json_number(stdout, v.x);
-    fputs(", ", stdout);
-    rtp_json_number(stdout, v.y);
-    fputs(", ", stdout);
-    rtp_json_number(stdout, v.z);
-    fputs("]", stdout);
+    printf("\"%s\": ", key);
+    rtp_json_vec3(stdout, v.x, v.y, v.z);
 }
 
 /* Row-major 3x4 [linear | translation]. */
