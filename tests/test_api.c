@@ -134,6 +134,8 @@ Test(api, errors_are_values_with_one_line)
     opt = rtk_default_options();
     opt.max_memory = 1024;
     cr_expect_eq(rtk_open(SCENE, &opt, &s, err, sizeof err), RTK_ERR_NOMEM, "%s", err);
+    /* That refusal is not the next open's: a missing file is still an input error. */
+    cr_expect_eq(rtk_open("no/such/scene.yaml", NULL, &s, err, sizeof err), RTK_ERR_INPUT, "%s", err);
     cr_expect_eq(rtk_write_image("no/such/folder/out.png", (const uint8_t *)"\0\0\0", 1, 1, err, sizeof err),
                  RTK_ERR_OUTPUT);
     rtk_close(NULL);

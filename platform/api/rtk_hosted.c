@@ -65,6 +65,7 @@ rtk_status rtk_open(const char *path, const rtk_options *options, rtk_scene **ou
      * library does not otherwise set: for this open, the cap is what is held now plus
      * opt.max_memory, so other scenes the program holds do not count against it. */
     size_t cap = rtp_mem_cap(), held = rtp_mem_in_use();
+    rtp_mem_forget_refusal(); /* an earlier open's refusal is not this one's */
     rtp_mem_set_cap(o.max_memory > SIZE_MAX - held ? SIZE_MAX : held + o.max_memory);
     int rc = rtp_scene_open(path, &opt, &s->opened, err, err_size);
     rtp_mem_set_cap(cap);

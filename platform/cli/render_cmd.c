@@ -9,6 +9,7 @@
 #include "image/image.h"
 #include "load/input_file.h"
 #include "load/scene_open.h"
+#include "mem/mem.h"
 #include "part/part_file.h"
 #include "sha256.h"
 #include "thread/threads.h"
@@ -123,7 +124,9 @@ int rtp_cmd_render(int argc, char **argv)
     rtp_signals_install("render", scene);
     if (a.output) rtp_input_forbid(a.output);
     rtp_scene built;
-    a.build.with_image = true;
+    /* A frame's image is allocated under the cap before the arena; a part's, only its
+     * rectangle, once the plan has cut it. */
+    a.build.with_image = !a.part.wanted;
     rc = rtp_cli_open_scene("render", a.scene, &a.build, &built);
     if (rc != RTP_EXIT_OK) return rc;
     const rt_camera *cam = &built.scene.camera;
@@ -133,11 +136,15 @@ int rtp_cmd_render(int argc, char **argv)
         rtp_scene_close(&built);
         return rc;
     }
-    /* The frame's image, allocated under the cap before the arena; a part uses its first rows. */
     rtp_image img = built.image;
     built.image = (rtp_image){0};
-    img.width = part.region.x1 - part.region.x0;
-    img.height = part.region.y1 - part.region.y0;
+    if (a.part.wanted &&
+        !rtp_image_alloc(&img, part.region.x1 - part.region.x0, part.region.y1 - part.region.y0, "the part's image")) {
+        rtp_message("render", "%s: %s", scene, rtp_mem_refusal());
+        rtp_scene_close(&built);
+        rtp_part_free(&part);
+        return RTP_EXIT_MEMORY;
+    }
     rt_tracer tracer = {.scene = &built.scene, .use_bvh = a.use_bvh};
     a.parallel.progress = !a.quiet && (a.force_progress || isatty(STDERR_FILENO));
     a.parallel.cancel = rtp_signals_defer(); /* stop between tiles, and free what the render holds */

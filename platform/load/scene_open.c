@@ -51,7 +51,10 @@ int rtp_scene_open(const char *path, const rtp_scene_options *opt, rtp_scene *ou
     const rt_camera_desc *cam = &out->loaded.desc.camera;
     if (opt->with_image && !rtp_image_alloc(&out->image, cam->width, cam->height, "the output image"))
         return fail_memory(out, shown, err, err_size);
+    /* The first try leaves half of what the cap leaves to what the command allocates
+     * while the scene is held (a part's image and texts); later ones take what they need. */
     size_t size = (size_t)64 << 20;
+    if (size > room() / 2) size = room() / 2;
     for (;;) {
         if (size > room()) size = room();
         out->memory = rtp_mem_alloc(size, "the scene arena");

@@ -23,6 +23,7 @@ size_t rtp_mem_cap(void) { return atomic_load(&cap); }
 size_t rtp_mem_in_use(void) { return atomic_load(&in_use); }
 size_t rtp_mem_peak(void) { return atomic_load(&peak); }
 bool rtp_mem_refused(void) { return atomic_load(&refused); }
+void rtp_mem_forget_refusal(void) { atomic_store(&refused, false); }
 const char *rtp_mem_refusal(void) { return refusal; }
 
 const char *rtp_mem_describe(size_t bytes, char *buf, size_t size)

@@ -39,6 +39,8 @@ void rtp_mem_unhold(size_t size);
  * (768 MiB) does not fit in --max-memory (1 MiB; 0.2 MiB in use)". */
 bool rtp_mem_refused(void);
 const char *rtp_mem_refusal(void);
+/* Forgets an earlier refusal, for a library call that starts afresh (rtk_open). */
+void rtp_mem_forget_refusal(void);
 
 /* "8 MiB", "1.5 MiB" or "1000 bytes" into buf (at least 32 bytes); returns buf. */
 const char *rtp_mem_describe(size_t bytes, char *buf, size_t size);
