@@ -3,6 +3,7 @@
 
 #include "mem/mem.h"
 #include <errno.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -86,9 +87,12 @@ bool rtp_part_parse_index(const char *s, uint32_t max_count, uint32_t *index, ui
     return true;
 }
 
-static bool fail(char *err, size_t err_size, const char *fmt, const char *a, const char *b)
+bool rtp_part_fail(char *err, size_t err_size, const char *fmt, ...)
 {
-    if (err_size > 0) snprintf(err, err_size, fmt, a, b);
+    va_list ap;
+    va_start(ap, fmt);
+    if (err_size > 0) vsnprintf(err, err_size, fmt, ap);
+    va_end(ap);
     return false;
 }
 
@@ -98,17 +102,17 @@ bool rtp_part_parse_place(rtp_part *p, char *err, size_t err_size)
     uint32_t wh[2];
     if (!numbers(frame, 'x', wh, 2) || wh[0] == 0 || wh[1] == 0 || wh[0] > RT_MAX_IMAGE_SIDE ||
         wh[1] > RT_MAX_IMAGE_SIDE)
-        return fail(err, err_size, "malformed '%s' text '%s'", rtp_part_keys[RTP_PART_FRAME], frame);
+        return rtp_part_fail(err, err_size, "malformed '%s' text '%s'", rtp_part_keys[RTP_PART_FRAME], frame);
     p->width = wh[0], p->height = wh[1];
     if (!rtp_part_parse_rect(region, &p->region))
-        return fail(err, err_size, "malformed '%s' text '%s'", rtp_part_keys[RTP_PART_REGION], region);
+        return rtp_part_fail(err, err_size, "malformed '%s' text '%s'", rtp_part_keys[RTP_PART_REGION], region);
     if (p->region.x1 > p->width || p->region.y1 > p->height)
-        return fail(err, err_size, "its region %s lies outside its %s frame", region, frame);
+        return rtp_part_fail(err, err_size, "its region %s lies outside its %s frame", region, frame);
     /* rtk render cuts a frame into at most as many parts as it has rows. */
     if (!strcmp(index, "region"))
         p->index = p->count = 0;
     else if (!rtp_part_parse_index(index, p->height, &p->index, &p->count))
-        return fail(err, err_size, "malformed '%s' text '%s'", rtp_part_keys[RTP_PART_INDEX], index);
+        return rtp_part_fail(err, err_size, "malformed '%s' text '%s'", rtp_part_keys[RTP_PART_INDEX], index);
     return true;
 }
 

@@ -52,6 +52,9 @@ bool rtp_part_parse_rect(const char *s, rt_rect *out);
 /* "I/N" with I < N, 1 <= N <= max_count; false otherwise. */
 bool rtp_part_parse_index(const char *s, uint32_t max_count, uint32_t *index, uint32_t *count);
 
+/* Writes the problem, printf-style, into err; returns false. */
+bool rtp_part_fail(char *err, size_t err_size, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+
 /* Lowercase hex of a 32-byte digest into hex (65 bytes with the terminator). */
 void rtp_part_hex(const uint8_t digest[32], char hex[65]);
 

@@ -7,7 +7,6 @@
 #include "mem/mem.h"
 #include "sha256.h"
 #include <spng.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -15,16 +14,6 @@
 #define RTP_PART_CHUNK_LIMIT (16u << 20)
 /* Larger than any part within the side limit, so a huge file is refused before reading. */
 #define RTP_PART_MAX_FILE (1u << 30)
-
-/* Writes the problem into err; returns false. */
-static bool fail(char *err, size_t err_size, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    if (err_size > 0) vsnprintf(err, err_size, fmt, ap);
-    va_end(ap);
-    return false;
-}
 
 static void pixel_digest(const uint8_t *rgb, const rt_rect *r, char hex[65])
 {
@@ -101,13 +90,13 @@ static bool take_fields(spng_ctx *ctx, rtp_part *p, char *err, size_t err_size)
         for (int f = 0; ok && f < RTP_PART_FIELDS; f++) {
             if (strcmp(text[i].keyword, rtp_part_keys[f])) continue;
             if (p->text[f])
-                ok = fail(err, err_size, "corrupt: two '%s' text chunks", rtp_part_keys[f]);
+                ok = rtp_part_fail(err, err_size, "corrupt: two '%s' text chunks", rtp_part_keys[f]);
             else if (!rtp_part_set(p, f, text[i].text))
-                ok = fail(err, err_size, "%s", rtp_mem_refusal());
+                ok = rtp_part_fail(err, err_size, "%s", rtp_mem_refusal());
         }
     rtp_mem_free(text);
     for (int f = 0; ok && f < RTP_PART_FIELDS; f++)
-        if (!p->text[f]) ok = fail(err, err_size, "not an rtk part: no '%s' text chunk", rtp_part_keys[f]);
+        if (!p->text[f]) ok = rtp_part_fail(err, err_size, "not an rtk part: no '%s' text chunk", rtp_part_keys[f]);
     return ok && rtp_part_parse_place(p, err, err_size);
 }
 
@@ -115,7 +104,7 @@ static bool take_fields(spng_ctx *ctx, rtp_part *p, char *err, size_t err_size)
 static bool decode(const uint8_t *png, size_t png_size, rtp_part *p, uint8_t **rgb, char *err, size_t err_size)
 {
     spng_ctx *ctx = rtp_png_ctx_new(0);
-    if (!ctx) return fail(err, err_size, "%s", rtp_mem_refusal());
+    if (!ctx) return rtp_part_fail(err, err_size, "%s", rtp_mem_refusal());
     struct spng_ihdr ihdr;
     size_t len = 0;
     char what[64];
@@ -133,15 +122,15 @@ static bool decode(const uint8_t *png, size_t png_size, rtp_part *p, uint8_t **r
     if (rc == 0) rc = spng_decode_chunks(ctx); /* on to IEND: a part cut short after its pixels is truncated too */
     bool ok = rc == 0;
     if (rc == SPNG_IO_EOF || rc == SPNG_EOF)
-        fail(err, err_size, "truncated (the PNG ends early)");
+        rtp_part_fail(err, err_size, "truncated (the PNG ends early)");
     else if (rc == SPNG_EMEM)
-        fail(err, err_size, "%s", rtp_mem_refusal());
+        rtp_part_fail(err, err_size, "%s", rtp_mem_refusal());
     else if (rc != 0)
-        fail(err, err_size, "corrupt PNG: %s", spng_strerror(rc));
+        rtp_part_fail(err, err_size, "corrupt PNG: %s", spng_strerror(rc));
     ok = ok && take_fields(ctx, p, err, err_size);
     if (ok && (ihdr.width != p->region.x1 - p->region.x0 || ihdr.height != p->region.y1 - p->region.y0))
-        ok = fail(err, err_size, "its image is %ux%u but its region %s is %ux%u", ihdr.width, ihdr.height,
-                  p->text[RTP_PART_REGION], p->region.x1 - p->region.x0, p->region.y1 - p->region.y0);
+        ok = rtp_part_fail(err, err_size, "its image is %ux%u but its region %s is %ux%u", ihdr.width, ihdr.height,
+                           p->text[RTP_PART_REGION], p->region.x1 - p->region.x0, p->region.y1 - p->region.y0);
     spng_ctx_free(ctx);
     return ok;
 }
@@ -152,9 +141,10 @@ static bool check_ends(const uint8_t *png, size_t size, char *err, size_t err_si
 {
     static const uint8_t signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
     static const uint8_t iend[12] = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xae, 0x42, 0x60, 0x82};
-    if (size == 0) return fail(err, err_size, "empty file");
-    if (size < 8 || memcmp(png, signature, 8)) return fail(err, err_size, "not an rtk part (not a PNG file)");
-    if (size < 20 || memcmp(png + size - 12, iend, 12)) return fail(err, err_size, "truncated (the PNG ends early)");
+    if (size == 0) return rtp_part_fail(err, err_size, "empty file");
+    if (size < 8 || memcmp(png, signature, 8)) return rtp_part_fail(err, err_size, "not an rtk part (not a PNG file)");
+    if (size < 20 || memcmp(png + size - 12, iend, 12))
+        return rtp_part_fail(err, err_size, "truncated (the PNG ends early)");
     return true;
 }
 
@@ -166,7 +156,7 @@ bool rtp_part_read(const char *path, rtp_part *p, uint8_t **rgb, char *err, size
     uint8_t *png = NULL;
     size_t size = 0;
     if (!rtp_input_open(&in, path, false, why, sizeof why))
-        return fail(err, err_size, "%s%s", in.open_failed ? "cannot open: " : "", why);
+        return rtp_part_fail(err, err_size, "%s%s", in.open_failed ? "cannot open: " : "", why);
     if (!rtp_input_read(&in, RTP_PART_MAX_FILE, "a part", &png, &size, err, err_size)) return false;
     uint8_t *pixels = NULL;
     bool ok = check_ends(png, size, err, err_size) && decode(png, size, p, &pixels, err, err_size);
@@ -174,7 +164,7 @@ bool rtp_part_read(const char *path, rtp_part *p, uint8_t **rgb, char *err, size
     char hex[65];
     if (ok) pixel_digest(pixels, &p->region, hex);
     if (ok && strcmp(hex, p->text[RTP_PART_PIXELS]))
-        ok = fail(err, err_size, "corrupt: its pixels do not match their digest");
+        ok = rtp_part_fail(err, err_size, "corrupt: its pixels do not match their digest");
     if (ok && rgb)
         *rgb = pixels;
     else

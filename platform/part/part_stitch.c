@@ -1,22 +1,12 @@
 /* rtp_stitch_same_render and rtp_stitch_coverage; see part_stitch.h. */
 #include "part/part_stitch.h"
 
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 /* How much of a differing value an error shows. */
 #define RTP_SHOWN 80
-
-static bool fail(char *err, size_t err_size, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    if (err_size > 0) vsnprintf(err, err_size, fmt, ap);
-    va_end(ap);
-    return false;
-}
 
 /* The first RTP_SHOWN characters of a field on one line. */
 static void shown(const char *text, char out[RTP_SHOWN + 4])
@@ -48,8 +38,8 @@ bool rtp_stitch_same_render(const rtp_part *part, const char *name, const rtp_pa
         char a[RTP_SHOWN + 4], b[RTP_SHOWN + 4];
         shown(part->text[f], a);
         shown(reference->text[f], b);
-        return fail(err, err_size, "%s: other %s than %s: '%s' vs '%s'", name, rtp_part_field_names[f], reference_name,
-                    a, b);
+        return rtp_part_fail(err, err_size, "%s: other %s than %s: '%s' vs '%s'", name, rtp_part_field_names[f],
+                             reference_name, a, b);
     }
     return true;
 }
@@ -124,12 +114,12 @@ bool rtp_stitch_coverage(const rtp_part *parts, const char *const *names, uint32
         for (uint32_t k = 0; k < i; k++) {
             rt_rect both;
             if (!intersect(&parts[i].region, &parts[k].region, &both)) continue;
-            if (!strcmp(names[i], names[k])) return fail(err, err_size, "%s: given twice", names[i]);
+            if (!strcmp(names[i], names[k])) return rtp_part_fail(err, err_size, "%s: given twice", names[i]);
             if (!memcmp(&parts[i].region, &parts[k].region, sizeof both))
-                return fail(err, err_size, "%s: a duplicate: %s holds the same region %s", names[i], names[k],
-                            parts[i].text[RTP_PART_REGION]);
-            return fail(err, err_size, "%s: overlaps %s in pixels %u,%u,%u,%u", names[i], names[k], both.x0, both.y0,
-                        both.x1, both.y1);
+                return rtp_part_fail(err, err_size, "%s: a duplicate: %s holds the same region %s", names[i], names[k],
+                                     parts[i].text[RTP_PART_REGION]);
+            return rtp_part_fail(err, err_size, "%s: overlaps %s in pixels %u,%u,%u,%u", names[i], names[k], both.x0,
+                                 both.y0, both.x1, both.y1);
         }
     /* Without overlaps, the frame is covered exactly when the areas add up to it. */
     uint64_t area = 0;
@@ -138,12 +128,12 @@ bool rtp_stitch_coverage(const rtp_part *parts, const char *const *names, uint32
     if (area == (uint64_t)parts[0].width * parts[0].height) return true;
     uint32_t x, y;
     if (!first_gap(parts, count, &x, &y))
-        return fail(err, err_size, "a gap: the parts cover %llu of the %s frame's pixels", (unsigned long long)area,
-                    parts[0].text[RTP_PART_FRAME]);
+        return rtp_part_fail(err, err_size, "a gap: the parts cover %llu of the %s frame's pixels",
+                             (unsigned long long)area, parts[0].text[RTP_PART_FRAME]);
     uint32_t missing = missing_index(parts, count);
     if (missing != UINT32_MAX)
-        return fail(err, err_size, "part %u/%u is missing: no part covers pixel (%u, %u) of the %s frame", missing,
-                    parts[0].count, x, y, parts[0].text[RTP_PART_FRAME]);
-    return fail(err, err_size, "a gap: no part covers pixel (%u, %u) of the %s frame", x, y,
-                parts[0].text[RTP_PART_FRAME]);
+        return rtp_part_fail(err, err_size, "part %u/%u is missing: no part covers pixel (%u, %u) of the %s frame",
+                             missing, parts[0].count, x, y, parts[0].text[RTP_PART_FRAME]);
+    return rtp_part_fail(err, err_size, "a gap: no part covers pixel (%u, %u) of the %s frame", x, y,
+                         parts[0].text[RTP_PART_FRAME]);
 }
