@@ -174,7 +174,8 @@ demo: deps
 
 # The unit and reference tests on the double build, then the golden render hashes
 # of both builds (the fixed build also runs its own math, precision and reference
-# suites, and must stay within 1 level of the double build on every golden scene).
+# suites, and must stay within 1 level of the double build on every golden scene), and
+# the bad-input catalogue on both.
 check: deps
 	$(MAKE) build/rtk build/rtk-tests
 	$(MAKE) RT_REAL=fixed build-fixed/rtk build-fixed/rtk-tests
@@ -186,6 +187,7 @@ check: deps
 	tests/golden.sh check build-fixed/rtk fixed
 	targets/fixed_vs_double.sh
 	tests/bad/run.sh build/rtk
+	tests/bad/run.sh build-fixed/rtk
 	$(MAKE) check-examples
 	tests/install.sh
 

@@ -4,7 +4,7 @@
 #   make fuzz-long FUZZ_SECONDS=N  fresh random seeds, N s per target and backend; keeps the
 #                                 minimised corpus in fuzz/corpus/ (fuzz/long.sh)
 #   make fuzz-coverage            line coverage of core/ per target from its corpus (llvm-cov)
-#   make check-asan               the Criterion suite and rtk under ASan+UBSan
+#   make check-asan               the Criterion suite and the bad-input catalogue under ASan+UBSan
 # Core targets are built for every scalar backend present (double, and fixed once
 # core/real_fixed.h exists); the parser targets (yaml, ply, png) for double only.
 
@@ -114,5 +114,6 @@ ASAN_FLAGS := -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno
 check-asan: deps
 	$(MAKE) BUILD=$(ASAN_BUILD) OPT="$(ASAN_FLAGS)" ASSERTS=1 $(ASAN_BUILD)/rtk $(ASAN_BUILD)/rtk-tests
 	fuzz/sanitized.sh $(ASAN_BUILD)/sanitizer-reports $(ASAN_BUILD)/rtk-tests --jobs 2
+	tests/bad/run.sh $(ASAN_BUILD)/rtk
 
 -include $(wildcard $(FUZZ_BUILD)/*/*/*.d)
