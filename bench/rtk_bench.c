@@ -83,6 +83,24 @@ static void packet_range(void *ctx, uint32_t begin, uint32_t end, bool any)
 static void nearest_packets(void *ctx, uint32_t begin, uint32_t end) { packet_range(ctx, begin, end, false); }
 static void any_packets(void *ctx, uint32_t begin, uint32_t end) { packet_range(ctx, begin, end, true); }
 
+/* Whether the workload holds this scene's triangles: the same vertices and indices, the
+ * positions equal up to the Q32.32 grid (the workload is written by the double build). */
+static bool holds_scene(const bench_workload *w, const rt_scene *s)
+{
+    if (w->triangle_count != s->triangle_count || s->prim_count != s->triangle_count ||
+        w->vertex_count != s->vertex_count)
+        return false;
+    for (uint32_t t = 0; t < w->triangle_count; t++)
+        for (int k = 0; k < 3; k++)
+            if (w->indices[3 * t + k] != s->triangles[t].v[k]) return false;
+    for (uint32_t v = 0; v < w->vertex_count; v++)
+        for (int k = 0; k < 3; k++) {
+            double ours = rt_to_double(rt_v3_get(s->positions[v], k)), theirs = w->positions[3 * v + k];
+            if (!(fabs(ours - theirs) <= 1e-9 + 1e-12 * fabs(theirs))) return false;
+        }
+    return true;
+}
+
 static rt_ray from_bench(const bench_ray *b)
 {
     rt_ray r;
@@ -278,7 +296,7 @@ int main(int argc, char **argv)
                    w.shadow_count);
     } else {
         ok = bench_workload_read(argv[3], &w);
-        if (ok && (w.triangle_count != scene->triangle_count || scene->prim_count != scene->triangle_count)) {
+        if (ok && !holds_scene(&w, scene)) {
             fprintf(stderr, "rtk-bench: %s does not hold the triangles of %s\n", argv[3], argv[2]);
             ok = false;
         }
