@@ -36,8 +36,10 @@ SPNG_OBJ := $(WEB_BUILD)/lib/spng/spng.o
 
 WEB_CORE_SRC := $(call core_sources,double)
 # platform/thread/threads.c needs POSIX threads; wasm gets one thread (web/wasm/parallel_serial.c).
-WEB_PLATFORM_SRC := $(filter-out platform/cli/main.c platform/thread/threads.c,$(wildcard platform/*/*.c))
-WEB_SHIM_SRC := web/wasm/parallel_serial.c web/wasm/realpath.c
+# WASI has no signals to handle (web/wasm/signals_none.c), no file owners or modes (owner_none.c).
+WEB_PLATFORM_SRC := $(filter-out platform/cli/main.c platform/thread/threads.c platform/cli/signals.c,\
+	$(wildcard platform/*/*.c))
+WEB_SHIM_SRC := web/wasm/parallel_serial.c web/wasm/realpath.c web/wasm/signals_none.c web/wasm/owner_none.c
 WEB_CORE_OBJ := $(WEB_CORE_SRC:%.c=$(WEB_BUILD)/%.o)
 WEB_PLATFORM_OBJ := $(WEB_PLATFORM_SRC:%.c=$(WEB_BUILD)/%.o) $(WEB_SHIM_SRC:%.c=$(WEB_BUILD)/%.o)
 WEB_API_OBJ := $(patsubst %.c,$(WEB_BUILD)/%.o,$(wildcard web/wasm/rtk_wasm*.c))
