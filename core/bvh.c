@@ -105,22 +105,24 @@ static binning binning_of(const build_task *t)
     return g;
 }
 
+/* floor((c - lo) scale) clamped to the bins: below 1 (or NaN) bin 0, from BIN_COUNT - 1
+ * on the last bin, and only in between a conversion. */
 static int bin_of(rt_real c, rt_real lo, rt_real scale)
 {
-    int32_t b = rt_floor_int(rt_mul(rt_sub(c, lo), scale));
-    return b < 0 ? 0 : b >= BIN_COUNT ? BIN_COUNT - 1 : (int)b;
+    rt_real x = rt_mul(rt_sub(c, lo), scale);
+    if (!(x >= RT_ONE)) return 0;
+    if (x >= rt_from_int(BIN_COUNT - 1)) return BIN_COUNT - 1;
+    return (int)rt_floor_nonneg(x);
 }
 
 /* Bins refs[first .. first + count) into b. */
 static void bin_refs(bins *b, const binning *g, const build_ref *refs, uint32_t first, uint32_t count)
 {
-    for (int axis = 0; axis < 3; axis++) {
-        b->used[axis] = 0;
+    for (int axis = 0; axis < 3; axis++)
         for (int k = 0; k < BIN_COUNT; k++) {
             b->box[axis][k] = rt_aabb_empty();
             b->count[axis][k] = 0;
         }
-    }
     for (uint32_t i = first; i < first + count; i++) {
         rt_vec3 c = centroid_of(&refs[i]);
         int bx = bin_of(c.x, g->lo[0], g->scale[0]), by = bin_of(c.y, g->lo[1], g->scale[1]),
@@ -131,9 +133,10 @@ static void bin_refs(bins *b, const binning *g, const build_ref *refs, uint32_t 
         b->count[0][bx]++;
         b->count[1][by]++;
         b->count[2][bz]++;
-        b->used[0] |= 1u << bx;
-        b->used[1] |= 1u << by;
-        b->used[2] |= 1u << bz;
+    }
+    for (int axis = 0; axis < 3; axis++) {
+        b->used[axis] = 0;
+        for (int k = 0; k < BIN_COUNT; k++) b->used[axis] |= (uint32_t)(b->count[axis][k] > 0) << k;
     }
 }
 
