@@ -17,6 +17,23 @@ static rt_aabb aabb_union(rt_aabb a, rt_aabb b)
     return r;
 }
 
+/* *acc = aabb_union(*acc, *b). With SSE2, two coordinates per operation: minpd(a, b)
+ * and maxpd(a, b) are, lane by lane, a < b ? a : b and a > b ? a : b (the second
+ * operand on ties and NaN), exactly rt_min and rt_max. */
+#if defined(__SSE2__) && !defined(RT_REAL_FIXED)
+typedef double pair_d __attribute__((vector_size(16), aligned(8), may_alias));
+static inline void aabb_grow(rt_aabb *acc, const rt_aabb *b)
+{
+    pair_d *a = (pair_d *)acc; /* lo.x lo.y | lo.z hi.x | hi.y hi.z */
+    const pair_d *p = (const pair_d *)b;
+    a[0] = __builtin_ia32_minpd(a[0], p[0]);
+    a[1] = __builtin_ia32_movsd(__builtin_ia32_maxpd(a[1], p[1]), __builtin_ia32_minpd(a[1], p[1]));
+    a[2] = __builtin_ia32_maxpd(a[2], p[2]);
+}
+#else
+static inline void aabb_grow(rt_aabb *acc, const rt_aabb *b) { *acc = aabb_union(*acc, *b); }
+#endif
+
 static rt_aabb aabb_add_point(rt_aabb a, rt_vec3 p)
 {
     rt_aabb r = {rt_v3_min(a.lo, p), rt_v3_max(a.hi, p)};
@@ -127,9 +144,9 @@ static void bin_refs(bins *b, const binning *g, const build_ref *refs, uint32_t 
         rt_vec3 c = centroid_of(&refs[i]);
         int bx = bin_of(c.x, g->lo[0], g->scale[0]), by = bin_of(c.y, g->lo[1], g->scale[1]),
             bz = bin_of(c.z, g->lo[2], g->scale[2]);
-        b->box[0][bx] = aabb_union(b->box[0][bx], refs[i].bounds);
-        b->box[1][by] = aabb_union(b->box[1][by], refs[i].bounds);
-        b->box[2][bz] = aabb_union(b->box[2][bz], refs[i].bounds);
+        aabb_grow(&b->box[0][bx], &refs[i].bounds);
+        aabb_grow(&b->box[1][by], &refs[i].bounds);
+        aabb_grow(&b->box[2][bz], &refs[i].bounds);
         b->count[0][bx]++;
         b->count[1][by]++;
         b->count[2][bz]++;
@@ -148,7 +165,7 @@ static void merge_bins(bins *into, const bins *later)
     for (int axis = 0; axis < 3; axis++) {
         into->used[axis] |= later->used[axis];
         for (int k = 0; k < BIN_COUNT; k++) {
-            into->box[axis][k] = aabb_union(into->box[axis][k], later->box[axis][k]);
+            aabb_grow(&into->box[axis][k], &later->box[axis][k]);
             into->count[axis][k] += later->count[axis][k];
         }
     }
