@@ -22,16 +22,25 @@ static rt_aabb aabb_union(rt_aabb a, rt_aabb b)
  * operand on ties and NaN), exactly rt_min and rt_max. */
 #if defined(__SSE2__) && !defined(RT_REAL_FIXED)
 typedef double pair_d __attribute__((vector_size(16), aligned(8), may_alias));
-static inline void aabb_grow(rt_aabb *acc, const rt_aabb *b)
+typedef struct {
+    pair_d p[3]; /* lo.x lo.y | lo.z hi.x | hi.y hi.z */
+} box_value;
+static inline box_value box_load(const rt_aabb *b)
 {
-    pair_d *a = (pair_d *)acc; /* lo.x lo.y | lo.z hi.x | hi.y hi.z */
     const pair_d *p = (const pair_d *)b;
-    a[0] = __builtin_ia32_minpd(a[0], p[0]);
-    a[1] = __builtin_ia32_movsd(__builtin_ia32_maxpd(a[1], p[1]), __builtin_ia32_minpd(a[1], p[1]));
-    a[2] = __builtin_ia32_maxpd(a[2], p[2]);
+    return (box_value){{p[0], p[1], p[2]}};
+}
+static inline void aabb_grow(rt_aabb *acc, box_value b)
+{
+    pair_d *a = (pair_d *)acc;
+    a[0] = __builtin_ia32_minpd(a[0], b.p[0]);
+    a[1] = __builtin_ia32_movsd(__builtin_ia32_maxpd(a[1], b.p[1]), __builtin_ia32_minpd(a[1], b.p[1]));
+    a[2] = __builtin_ia32_maxpd(a[2], b.p[2]);
 }
 #else
-static inline void aabb_grow(rt_aabb *acc, const rt_aabb *b) { *acc = aabb_union(*acc, *b); }
+typedef rt_aabb box_value;
+static inline box_value box_load(const rt_aabb *b) { return *b; }
+static inline void aabb_grow(rt_aabb *acc, box_value b) { *acc = aabb_union(*acc, b); }
 #endif
 
 static rt_aabb aabb_add_point(rt_aabb a, rt_vec3 p)
@@ -144,9 +153,11 @@ static void bin_refs(bins *b, const binning *g, const build_ref *refs, uint32_t 
         rt_vec3 c = centroid_of(&refs[i]);
         int bx = bin_of(c.x, g->lo[0], g->scale[0]), by = bin_of(c.y, g->lo[1], g->scale[1]),
             bz = bin_of(c.z, g->lo[2], g->scale[2]);
-        aabb_grow(&b->box[0][bx], &refs[i].bounds);
-        aabb_grow(&b->box[1][by], &refs[i].bounds);
-        aabb_grow(&b->box[2][bz], &refs[i].bounds);
+        /* Loaded once: the bins' stores could alias it. */
+        box_value bounds = box_load(&refs[i].bounds);
+        aabb_grow(&b->box[0][bx], bounds);
+        aabb_grow(&b->box[1][by], bounds);
+        aabb_grow(&b->box[2][bz], bounds);
         b->count[0][bx]++;
         b->count[1][by]++;
         b->count[2][bz]++;
@@ -165,7 +176,7 @@ static void merge_bins(bins *into, const bins *later)
     for (int axis = 0; axis < 3; axis++) {
         into->used[axis] |= later->used[axis];
         for (int k = 0; k < BIN_COUNT; k++) {
-            aabb_grow(&into->box[axis][k], &later->box[axis][k]);
+            aabb_grow(&into->box[axis][k], box_load(&later->box[axis][k]));
             into->count[axis][k] += later->count[axis][k];
         }
     }
