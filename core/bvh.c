@@ -131,13 +131,11 @@ static binning binning_of(const build_task *t)
     return g;
 }
 
-/* floor((c - lo) scale) clamped to the bins: below 1 (or NaN) bin 0, from BIN_COUNT - 1
- * on the last bin, and only in between a conversion. */
+/* floor((c - lo) scale) clamped to the bins, without a branch: clamped first (rt_max
+ * takes 0 over NaN), then converted. */
 static int bin_of(rt_real c, rt_real lo, rt_real scale)
 {
-    rt_real x = rt_mul(rt_sub(c, lo), scale);
-    if (!(x >= RT_ONE)) return 0;
-    if (x >= rt_from_int(BIN_COUNT - 1)) return BIN_COUNT - 1;
+    rt_real x = rt_min(rt_max(rt_mul(rt_sub(c, lo), scale), RT_ZERO), rt_from_int(BIN_COUNT - 1));
     return (int)rt_floor_nonneg(x);
 }
 
