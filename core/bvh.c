@@ -1,10 +1,10 @@
 /* Binned-SAH BVH build on the caller's workers, collapsed into a 4-wide tree
  * (bvh_collapse.c); see bvh.h (queries: scene_query.c). */
 #include "bvh.h"
+#include "bvh_bin.h"
 #include "bvh_binary.h"
 #include "invariant.h"
 
-#define BIN_COUNT 16
 /* Leaves hold LEAF_MIN references or fewer without asking, at most LEAF_MAX; in between
  * the SAH decides, pricing a node visit at TRAVERSAL_COST primitive tests. */
 #define LEAF_MIN 4
@@ -16,32 +16,6 @@ static rt_aabb aabb_union(rt_aabb a, rt_aabb b)
     rt_aabb r = {rt_v3_min(a.lo, b.lo), rt_v3_max(a.hi, b.hi)};
     return r;
 }
-
-/* *acc = aabb_union(*acc, *b). With SSE2, two coordinates per operation: minpd(a, b)
- * and maxpd(a, b) are, lane by lane, a < b ? a : b and a > b ? a : b (the second
- * operand on ties and NaN), exactly rt_min and rt_max. */
-#if defined(__SSE2__) && !defined(RT_REAL_FIXED)
-typedef double pair_d __attribute__((vector_size(16), aligned(8), may_alias));
-typedef struct {
-    pair_d p[3]; /* lo.x lo.y | lo.z hi.x | hi.y hi.z */
-} box_value;
-static inline box_value box_load(const rt_aabb *b)
-{
-    const pair_d *p = (const pair_d *)b;
-    return (box_value){{p[0], p[1], p[2]}};
-}
-static inline void aabb_grow(rt_aabb *acc, box_value b)
-{
-    pair_d *a = (pair_d *)acc;
-    a[0] = __builtin_ia32_minpd(a[0], b.p[0]);
-    a[1] = __builtin_ia32_movsd(__builtin_ia32_maxpd(a[1], b.p[1]), __builtin_ia32_minpd(a[1], b.p[1]));
-    a[2] = __builtin_ia32_maxpd(a[2], b.p[2]);
-}
-#else
-typedef rt_aabb box_value;
-static inline box_value box_load(const rt_aabb *b) { return *b; }
-static inline void aabb_grow(rt_aabb *acc, box_value b) { *acc = aabb_union(*acc, b); }
-#endif
 
 static rt_aabb aabb_add_point(rt_aabb a, rt_vec3 p)
 {
@@ -103,13 +77,6 @@ typedef struct {
 /* The box centre, as the binning sees the primitive. */
 static rt_vec3 centroid_of(const build_ref *r) { return rt_v3_scale(rt_v3_add(r->bounds.lo, r->bounds.hi), RT_C(0.5)); }
 
-/* How a task's centroids map to bins on each axis; a flat axis bins everything into
- * bin 0 (scale 0) and is never priced. */
-typedef struct {
-    rt_real lo[3], scale[3];
-    bool active[3];
-} binning;
-
 /* The references binned so far, per axis and bin: the union of their bounds, their
  * count, and in used[axis] bit k for each bin k that holds any. A union with an empty
  * box changes no bit, so the sweeps leave empty bins out. */
@@ -131,14 +98,6 @@ static binning binning_of(const build_task *t)
     return g;
 }
 
-/* floor((c - lo) scale) clamped to the bins, without a branch: clamped first (rt_max
- * takes 0 over NaN), then converted. */
-static int bin_of(rt_real c, rt_real lo, rt_real scale)
-{
-    rt_real x = rt_min(rt_max(rt_mul(rt_sub(c, lo), scale), RT_ZERO), rt_from_int(BIN_COUNT - 1));
-    return (int)rt_floor_nonneg(x);
-}
-
 /* Bins refs[first .. first + count) into b. */
 static void bin_refs(bins *b, const binning *g, const build_ref *refs, uint32_t first, uint32_t count)
 {
@@ -148,17 +107,16 @@ static void bin_refs(bins *b, const binning *g, const build_ref *refs, uint32_t 
             b->count[axis][k] = 0;
         }
     for (uint32_t i = first; i < first + count; i++) {
-        rt_vec3 c = centroid_of(&refs[i]);
-        int bx = bin_of(c.x, g->lo[0], g->scale[0]), by = bin_of(c.y, g->lo[1], g->scale[1]),
-            bz = bin_of(c.z, g->lo[2], g->scale[2]);
         /* Loaded once: the bins' stores could alias it. */
         box_value bounds = box_load(&refs[i].bounds);
-        aabb_grow(&b->box[0][bx], bounds);
-        aabb_grow(&b->box[1][by], bounds);
-        aabb_grow(&b->box[2][bz], bounds);
-        b->count[0][bx]++;
-        b->count[1][by]++;
-        b->count[2][bz]++;
+        int k[3];
+        box_bins(g, bounds, k);
+        box_grow(&b->box[0][k[0]], bounds);
+        box_grow(&b->box[1][k[1]], bounds);
+        box_grow(&b->box[2][k[2]], bounds);
+        b->count[0][k[0]]++;
+        b->count[1][k[1]]++;
+        b->count[2][k[2]]++;
     }
     for (int axis = 0; axis < 3; axis++) {
         b->used[axis] = 0;
@@ -174,7 +132,7 @@ static void merge_bins(bins *into, const bins *later)
     for (int axis = 0; axis < 3; axis++) {
         into->used[axis] |= later->used[axis];
         for (int k = 0; k < BIN_COUNT; k++) {
-            aabb_grow(&into->box[axis][k], box_load(&later->box[axis][k]));
+            box_grow(&into->box[axis][k], box_load(&later->box[axis][k]));
             into->count[axis][k] += later->count[axis][k];
         }
     }
