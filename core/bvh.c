@@ -207,21 +207,23 @@ static bool price_split(const build_task *t, const binning *g, const bins *b, sp
 static uint32_t partition(build_ref *refs, uint32_t first, uint32_t count, const split *s, rt_aabb *left_c,
                           rt_aabb *right_c)
 {
-    *left_c = *right_c = rt_aabb_empty();
+    centre_bounds left = centre_bounds_empty(), right = centre_bounds_empty();
     uint32_t i = first, j = first + count;
     while (i < j) {
-        rt_vec3 c = centroid_of(&refs[i]);
-        if (bin_of(rt_v3_get(c, s->axis), s->lo, s->scale) <= s->bin) {
-            *left_c = aabb_add_point(*left_c, c);
+        centre c = box_centre(box_load(&refs[i].bounds));
+        if (bin_of(centre_axis(c, s->axis), s->lo, s->scale) <= s->bin) {
+            centre_grow(&left, c);
             i++;
         } else {
-            *right_c = aabb_add_point(*right_c, c);
+            centre_grow(&right, c);
             j--;
             build_ref swap = refs[i];
             refs[i] = refs[j];
             refs[j] = swap;
         }
     }
+    *left_c = centre_bounds_aabb(left);
+    *right_c = centre_bounds_aabb(right);
     return i - first;
 }
 

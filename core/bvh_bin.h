@@ -1,5 +1,6 @@
-/* The binning pass of the BVH build (bvh.c) for one reference: the bin of its centroid
- * on each axis, and a bin's box grown by the reference's box. In the double build on
+/* The passes of the BVH build (bvh.c) for one reference: its centre, the bin of it on
+ * each axis, a bin's box grown by the reference's box, and the centre bounds the
+ * partition gathers. In the double build on
  * x86, two coordinates per SSE2 operation; elsewhere by the rt_ ops one at a time. Both
  * compute the same bits: addpd, subpd and mulpd round each lane as addsd, subsd and
  * mulsd do, and minpd(a, b) and maxpd(a, b) are, lane by lane, a < b ? a : b and
@@ -49,16 +50,55 @@ static inline void box_grow(rt_aabb *acc, box_value b)
     a[2] = __builtin_ia32_maxpd(a[2], b.p[2]);
 }
 
-/* The bins of b's centroid (lo + hi) 0.5: x and y as one pair, z alone. */
+/* A box's centre (lo + hi) 0.5, the point the binning sees: x and y as one pair. */
+typedef struct {
+    pair_d xy;
+    double z;
+} centre;
+
+static inline centre box_centre(box_value b)
+{
+    const pair_d half = {0.5, 0.5};
+    pair_d hi_xy = __builtin_ia32_shufpd(b.p[1], b.p[2], 1);
+    return (centre){(b.p[0] + hi_xy) * half, (b.p[1][0] + b.p[2][1]) * 0.5};
+}
+
+static inline rt_real centre_axis(centre c, int axis) { return axis == 2 ? c.z : c.xy[axis]; }
+
+/* The bins of b's centre: x and y from one pair. */
 static inline void box_bins(const binning *g, box_value b, int out[3])
 {
-    const pair_d half = {0.5, 0.5}, zero = {0.0, 0.0}, last = {BIN_COUNT - 1, BIN_COUNT - 1};
-    pair_d hi_xy = __builtin_ia32_shufpd(b.p[1], b.p[2], 1);
-    pair_d x = ((b.p[0] + hi_xy) * half - *(const pair_d *)g->lo) * *(const pair_d *)g->scale;
+    const pair_d zero = {0.0, 0.0}, last = {BIN_COUNT - 1, BIN_COUNT - 1};
+    centre c = box_centre(b);
+    pair_d x = (c.xy - *(const pair_d *)g->lo) * *(const pair_d *)g->scale;
     quad_i bins = __builtin_ia32_cvttpd2dq(__builtin_ia32_minpd(__builtin_ia32_maxpd(x, zero), last));
     out[0] = bins[0];
     out[1] = bins[1];
-    out[2] = bin_of((b.p[1][0] + b.p[2][1]) * 0.5, g->lo[2], g->scale[2]);
+    out[2] = bin_of(c.z, g->lo[2], g->scale[2]);
+}
+
+/* The bounds of centres, as an rt_aabb grown by points would be. */
+typedef struct {
+    pair_d lo_xy, hi_xy;
+    double lo_z, hi_z;
+} centre_bounds;
+
+static inline centre_bounds centre_bounds_empty(void)
+{
+    return (centre_bounds){{RT_REAL_MAX, RT_REAL_MAX}, {-RT_REAL_MAX, -RT_REAL_MAX}, RT_REAL_MAX, -RT_REAL_MAX};
+}
+
+static inline void centre_grow(centre_bounds *a, centre c)
+{
+    a->lo_xy = __builtin_ia32_minpd(a->lo_xy, c.xy);
+    a->hi_xy = __builtin_ia32_maxpd(a->hi_xy, c.xy);
+    a->lo_z = rt_min(a->lo_z, c.z);
+    a->hi_z = rt_max(a->hi_z, c.z);
+}
+
+static inline rt_aabb centre_bounds_aabb(centre_bounds a)
+{
+    return (rt_aabb){{a.lo_xy[0], a.lo_xy[1], a.lo_z}, {a.hi_xy[0], a.hi_xy[1], a.hi_z}};
 }
 #else
 typedef rt_aabb box_value;
@@ -71,13 +111,31 @@ static inline void box_grow(rt_aabb *acc, box_value b)
     acc->hi = rt_v3_max(acc->hi, b.hi);
 }
 
+typedef rt_vec3 centre;
+
+static inline centre box_centre(box_value b) { return rt_v3_scale(rt_v3_add(b.lo, b.hi), RT_C(0.5)); }
+
+static inline rt_real centre_axis(centre c, int axis) { return rt_v3_get(c, axis); }
+
 static inline void box_bins(const binning *g, box_value b, int out[3])
 {
-    rt_vec3 c = rt_v3_scale(rt_v3_add(b.lo, b.hi), RT_C(0.5));
+    centre c = box_centre(b);
     out[0] = bin_of(c.x, g->lo[0], g->scale[0]);
     out[1] = bin_of(c.y, g->lo[1], g->scale[1]);
     out[2] = bin_of(c.z, g->lo[2], g->scale[2]);
 }
+
+typedef rt_aabb centre_bounds;
+
+static inline centre_bounds centre_bounds_empty(void) { return rt_aabb_empty(); }
+
+static inline void centre_grow(centre_bounds *a, centre c)
+{
+    a->lo = rt_v3_min(a->lo, c);
+    a->hi = rt_v3_max(a->hi, c);
+}
+
+static inline rt_aabb centre_bounds_aabb(centre_bounds a) { return a; }
 #endif
 
 #endif
