@@ -77,13 +77,12 @@ typedef struct {
 /* The box centre, as the binning sees the primitive. */
 static rt_vec3 centroid_of(const build_ref *r) { return rt_v3_scale(rt_v3_add(r->bounds.lo, r->bounds.hi), RT_C(0.5)); }
 
-/* The references binned so far, per axis and bin: the union of their bounds, their
- * count, and in used[axis] bit k for each bin k that holds any. A union with an empty
- * box changes no bit, so the sweeps leave empty bins out. */
+/* The references binned so far, per axis and bin: the union of their bounds and their
+ * count. A union with an empty box changes no bit, so the sweeps leave empty bins (count
+ * 0) out. */
 typedef struct {
     rt_aabb box[3][BIN_COUNT];
     uint32_t count[3][BIN_COUNT];
-    uint32_t used[3];
 } bins;
 
 static binning binning_of(const build_task *t)
@@ -118,10 +117,6 @@ static void bin_refs(bins *b, const binning *g, const build_ref *refs, uint32_t 
         b->count[1][k[1]]++;
         b->count[2][k[2]]++;
     }
-    for (int axis = 0; axis < 3; axis++) {
-        b->used[axis] = 0;
-        for (int k = 0; k < BIN_COUNT; k++) b->used[axis] |= (uint32_t)(b->count[axis][k] > 0) << k;
-    }
 }
 
 /* Adds the bins of the references that follow those of `into`. A union of min and max
@@ -130,7 +125,6 @@ static void bin_refs(bins *b, const binning *g, const build_ref *refs, uint32_t 
 static void merge_bins(bins *into, const bins *later)
 {
     for (int axis = 0; axis < 3; axis++) {
-        into->used[axis] |= later->used[axis];
         for (int k = 0; k < BIN_COUNT; k++) {
             box_grow(&into->box[axis][k], box_load(&later->box[axis][k]));
             into->count[axis][k] += later->count[axis][k];
@@ -154,7 +148,7 @@ static bool price_split(const build_task *t, const binning *g, const bins *b, sp
     bool found = false;
     for (int axis = 0; axis < 3; axis++) {
         if (!g->active[axis]) continue;
-        uint32_t used = b->used[axis];
+        const uint32_t *used = b->count[axis];
         /* Sweep from the right to get suffix areas, then from the left to price each plane.
          * A plane after an empty bin costs what the plane before it costs and never wins
          * (a cheaper cost must be strictly cheaper), so only planes after used bins,
@@ -164,7 +158,7 @@ static bool price_split(const build_task *t, const binning *g, const bins *b, sp
         rt_aabb acc = rt_aabb_empty();
         uint32_t n = 0;
         for (int k = BIN_COUNT - 1; k > 0; k--) {
-            if (!(used >> k & 1u)) continue;
+            if (!used[k]) continue;
             acc = aabb_union(acc, b->box[axis][k]);
             n += b->count[axis][k];
             right_area[k] = rt_aabb_half_area(acc);
@@ -173,7 +167,7 @@ static bool price_split(const build_task *t, const binning *g, const bins *b, sp
         acc = rt_aabb_empty();
         n = 0;
         for (int k = 0, plane = -1; k < BIN_COUNT; k++) {
-            if (!(used >> k & 1u)) continue;
+            if (!used[k]) continue;
             /* The plane after the previous used bin: refs up to it left, from bin k right. */
             if (plane >= 0) {
                 rt_real cost = rt_add(visit, rt_add(rt_mul(rt_from_int(n), rt_aabb_half_area(acc)),
@@ -195,7 +189,7 @@ static bool price_split(const build_task *t, const binning *g, const bins *b, sp
     out->scale = g->scale[out->axis];
     out->left = out->right = rt_aabb_empty();
     for (int k = 0; k < BIN_COUNT; k++) {
-        if (!(b->used[out->axis] >> k & 1u)) continue;
+        if (!b->count[out->axis][k]) continue;
         rt_aabb *side = k <= out->bin ? &out->left : &out->right;
         *side = aabb_union(*side, b->box[out->axis][k]);
     }
