@@ -46,7 +46,9 @@ static inline void box_grow(rt_aabb *acc, box_value b)
 {
     pair_d *a = (pair_d *)acc;
     a[0] = __builtin_ia32_minpd(a[0], b.p[0]);
-    a[1] = __builtin_ia32_movsd(__builtin_ia32_maxpd(a[1], b.p[1]), __builtin_ia32_minpd(a[1], b.p[1]));
+    pair_d mixed = __builtin_ia32_maxpd(a[1], b.p[1]); /* lo.z takes the min */
+    mixed[0] = __builtin_ia32_minpd(a[1], b.p[1])[0];
+    a[1] = mixed;
     a[2] = __builtin_ia32_maxpd(a[2], b.p[2]);
 }
 
