@@ -172,19 +172,21 @@ demo: deps
 	$(BUILD)/rtk render scenes/demo.yaml -o demo.png
 	@echo "wrote demo.png"
 
-# The unit and reference tests on the double build, then the golden render hashes
-# of both builds (the fixed build also runs its own math, precision and reference
-# suites, and must stay within 1 level of the double build on every golden scene), and
-# the bad-input catalogue on both.
+# The unit and reference tests on the double build, then the golden render hashes and
+# BVH hashes of both builds (the fixed build also runs its own math, precision and
+# reference suites, and must stay within 1 level of the double build on every golden
+# scene), and the bad-input catalogue on both.
 check: deps
-	$(MAKE) build/rtk build/rtk-tests
-	$(MAKE) RT_REAL=fixed build-fixed/rtk build-fixed/rtk-tests
+	$(MAKE) build/rtk build/rtk-tests build/bench/tree-hash
+	$(MAKE) RT_REAL=fixed build-fixed/rtk build-fixed/rtk-tests build-fixed/bench/tree-hash
 	build/rtk-tests --jobs 2
 	build-fixed/rtk-tests --jobs 2 --filter 'real_fixed/*'
 	build-fixed/rtk-tests --jobs 2 --filter 'precision/*'
 	build-fixed/rtk-tests --jobs 2 --filter 'reference/*'
 	tests/golden.sh check build/rtk double
 	tests/golden.sh check build-fixed/rtk fixed
+	tests/tree_hash.sh check build/bench/tree-hash double
+	tests/tree_hash.sh check build-fixed/bench/tree-hash fixed
 	targets/fixed_vs_double.sh
 	tests/bad/run.sh build/rtk
 	tests/bad/run.sh build-fixed/rtk

@@ -21,6 +21,10 @@ $(BUILD)/bench/%.o: bench/%.c
 $(BUILD)/bench/rtk-bench: $(BENCH_RTK_OBJ) $(BUILD)/librtplatform.a $(BUILD)/librtcore.a
 	$(CC) $(OPT) -o $@ $^ $(LDLIBS)
 
+# The SHA-256 of built trees, to prove a change to the build leaves them as they were.
+$(BUILD)/bench/tree-hash: $(BUILD)/bench/tree_hash.o $(BUILD)/librtplatform.a $(BUILD)/librtcore.a
+	$(CC) $(OPT) -o $@ $^ $(LDLIBS)
+
 $(BUILD)/bench/embree-harness: bench/embree_harness.c $(BENCH_HARNESS_OBJ)
 	@mkdir -p $(@D)
 	$(CC) $(BENCH_EMBREE_CFLAGS) -MMD -MP -o $@ $< $(BENCH_HARNESS_OBJ) -lembree3 -lpthread -lm
@@ -48,4 +52,4 @@ bench-scale: bench-deps
 	$(MAKE) RT_REAL=double BUILD=build build/rtk build/bench/rtk-bench build/bench/embree-harness
 	bench/scale.sh
 
--include $(BENCH_RTK_OBJ:.o=.d) $(BUILD)/bench/embree-harness.d
+-include $(BENCH_RTK_OBJ:.o=.d) $(BUILD)/bench/tree_hash.d $(BUILD)/bench/embree-harness.d

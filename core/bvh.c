@@ -1,10 +1,10 @@
 /* Binned-SAH BVH build on the caller's workers, collapsed into a 4-wide tree
  * (bvh_collapse.c); see bvh.h (queries: scene_query.c). */
 #include "bvh.h"
+#include "bvh_bin.h"
 #include "bvh_binary.h"
 #include "invariant.h"
 
-#define BIN_COUNT 16
 /* Leaves hold LEAF_MIN references or fewer without asking, at most LEAF_MAX; in between
  * the SAH decides, pricing a node visit at TRAVERSAL_COST primitive tests. */
 #define LEAF_MIN 4
@@ -77,20 +77,12 @@ typedef struct {
 /* The box centre, as the binning sees the primitive. */
 static rt_vec3 centroid_of(const build_ref *r) { return rt_v3_scale(rt_v3_add(r->bounds.lo, r->bounds.hi), RT_C(0.5)); }
 
-/* How a task's centroids map to bins on each axis; a flat axis bins everything into
- * bin 0 (scale 0) and is never priced. */
-typedef struct {
-    rt_real lo[3], scale[3];
-    bool active[3];
-} binning;
-
-/* The references binned so far, per axis and bin: the union of their bounds, their
- * count, and in used[axis] bit k for each bin k that holds any. A union with an empty
- * box changes no bit, so the sweeps leave empty bins out. */
+/* The references binned so far, per axis and bin: the union of their bounds and their
+ * count. A union with an empty box changes no bit, so the sweeps leave empty bins (count
+ * 0) out. */
 typedef struct {
     rt_aabb box[3][BIN_COUNT];
     uint32_t count[3][BIN_COUNT];
-    uint32_t used[3];
 } bins;
 
 static binning binning_of(const build_task *t)
@@ -105,35 +97,25 @@ static binning binning_of(const build_task *t)
     return g;
 }
 
-static int bin_of(rt_real c, rt_real lo, rt_real scale)
-{
-    int32_t b = rt_floor_int(rt_mul(rt_sub(c, lo), scale));
-    return b < 0 ? 0 : b >= BIN_COUNT ? BIN_COUNT - 1 : (int)b;
-}
-
 /* Bins refs[first .. first + count) into b. */
 static void bin_refs(bins *b, const binning *g, const build_ref *refs, uint32_t first, uint32_t count)
 {
-    for (int axis = 0; axis < 3; axis++) {
-        b->used[axis] = 0;
+    for (int axis = 0; axis < 3; axis++)
         for (int k = 0; k < BIN_COUNT; k++) {
             b->box[axis][k] = rt_aabb_empty();
             b->count[axis][k] = 0;
         }
-    }
     for (uint32_t i = first; i < first + count; i++) {
-        rt_vec3 c = centroid_of(&refs[i]);
-        int bx = bin_of(c.x, g->lo[0], g->scale[0]), by = bin_of(c.y, g->lo[1], g->scale[1]),
-            bz = bin_of(c.z, g->lo[2], g->scale[2]);
-        b->box[0][bx] = aabb_union(b->box[0][bx], refs[i].bounds);
-        b->box[1][by] = aabb_union(b->box[1][by], refs[i].bounds);
-        b->box[2][bz] = aabb_union(b->box[2][bz], refs[i].bounds);
-        b->count[0][bx]++;
-        b->count[1][by]++;
-        b->count[2][bz]++;
-        b->used[0] |= 1u << bx;
-        b->used[1] |= 1u << by;
-        b->used[2] |= 1u << bz;
+        /* Loaded once: the bins' stores could alias it. */
+        box_value bounds = box_load(&refs[i].bounds);
+        int k[3];
+        box_bins(g, bounds, k);
+        box_grow(&b->box[0][k[0]], bounds);
+        box_grow(&b->box[1][k[1]], bounds);
+        box_grow(&b->box[2][k[2]], bounds);
+        b->count[0][k[0]]++;
+        b->count[1][k[1]]++;
+        b->count[2][k[2]]++;
     }
 }
 
@@ -143,9 +125,8 @@ static void bin_refs(bins *b, const binning *g, const build_ref *refs, uint32_t 
 static void merge_bins(bins *into, const bins *later)
 {
     for (int axis = 0; axis < 3; axis++) {
-        into->used[axis] |= later->used[axis];
         for (int k = 0; k < BIN_COUNT; k++) {
-            into->box[axis][k] = aabb_union(into->box[axis][k], later->box[axis][k]);
+            box_grow(&into->box[axis][k], box_load(&later->box[axis][k]));
             into->count[axis][k] += later->count[axis][k];
         }
     }
@@ -167,7 +148,7 @@ static bool price_split(const build_task *t, const binning *g, const bins *b, sp
     bool found = false;
     for (int axis = 0; axis < 3; axis++) {
         if (!g->active[axis]) continue;
-        uint32_t used = b->used[axis];
+        const uint32_t *used = b->count[axis];
         /* Sweep from the right to get suffix areas, then from the left to price each plane.
          * A plane after an empty bin costs what the plane before it costs and never wins
          * (a cheaper cost must be strictly cheaper), so only planes after used bins,
@@ -177,7 +158,7 @@ static bool price_split(const build_task *t, const binning *g, const bins *b, sp
         rt_aabb acc = rt_aabb_empty();
         uint32_t n = 0;
         for (int k = BIN_COUNT - 1; k > 0; k--) {
-            if (!(used >> k & 1u)) continue;
+            if (!used[k]) continue;
             acc = aabb_union(acc, b->box[axis][k]);
             n += b->count[axis][k];
             right_area[k] = rt_aabb_half_area(acc);
@@ -186,7 +167,7 @@ static bool price_split(const build_task *t, const binning *g, const bins *b, sp
         acc = rt_aabb_empty();
         n = 0;
         for (int k = 0, plane = -1; k < BIN_COUNT; k++) {
-            if (!(used >> k & 1u)) continue;
+            if (!used[k]) continue;
             /* The plane after the previous used bin: refs up to it left, from bin k right. */
             if (plane >= 0) {
                 rt_real cost = rt_add(visit, rt_add(rt_mul(rt_from_int(n), rt_aabb_half_area(acc)),
@@ -208,7 +189,7 @@ static bool price_split(const build_task *t, const binning *g, const bins *b, sp
     out->scale = g->scale[out->axis];
     out->left = out->right = rt_aabb_empty();
     for (int k = 0; k < BIN_COUNT; k++) {
-        if (!(b->used[out->axis] >> k & 1u)) continue;
+        if (!b->count[out->axis][k]) continue;
         rt_aabb *side = k <= out->bin ? &out->left : &out->right;
         *side = aabb_union(*side, b->box[out->axis][k]);
     }
@@ -220,21 +201,23 @@ static bool price_split(const build_task *t, const binning *g, const bins *b, sp
 static uint32_t partition(build_ref *refs, uint32_t first, uint32_t count, const split *s, rt_aabb *left_c,
                           rt_aabb *right_c)
 {
-    *left_c = *right_c = rt_aabb_empty();
+    centre_bounds left = centre_bounds_empty(), right = centre_bounds_empty();
     uint32_t i = first, j = first + count;
     while (i < j) {
-        rt_vec3 c = centroid_of(&refs[i]);
-        if (bin_of(rt_v3_get(c, s->axis), s->lo, s->scale) <= s->bin) {
-            *left_c = aabb_add_point(*left_c, c);
+        centre c = box_centre(box_load(&refs[i].bounds));
+        if (bin_of(centre_axis(c, s->axis), s->lo, s->scale) <= s->bin) {
+            centre_grow(&left, c);
             i++;
         } else {
-            *right_c = aabb_add_point(*right_c, c);
+            centre_grow(&right, c);
             j--;
             build_ref swap = refs[i];
             refs[i] = refs[j];
             refs[j] = swap;
         }
     }
+    *left_c = centre_bounds_aabb(left);
+    *right_c = centre_bounds_aabb(right);
     return i - first;
 }
 

@@ -80,6 +80,9 @@ static inline int32_t rt_floor_int(rt_real a)
     return (rt_real)i > a ? i - 1 : i;
 }
 
+/* Largest integer <= a, for 0 <= a < 2^31 only (a conversion that truncates). */
+static inline int32_t rt_floor_nonneg(rt_real a) { return (int32_t)a; }
+
 /* True when a is neither NaN nor infinite. */
 static inline bool rt_is_finite(rt_real a) { return a - a == 0.0; }
 

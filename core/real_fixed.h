@@ -184,6 +184,9 @@ static inline int32_t rt_floor_int(rt_real a)
     return hi <= INT32_MAX ? (int32_t)hi : (int32_t)(hi - 2147483648u) - INT32_MAX - 1;
 }
 
+/* Largest integer <= a, for 0 <= a < 2^31 only (the high word). */
+static inline int32_t rt_floor_nonneg(rt_real a) { return (int32_t)(a >> 32); }
+
 /* True when a is strictly inside the saturation rails (a saturated result means overflow). */
 static inline bool rt_is_finite(rt_real a) { return a > -RT_REAL_MAX && a < RT_REAL_MAX; }
 
