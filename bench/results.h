@@ -25,7 +25,10 @@ bool bench_results_write(const char *path, const bench_results *r);
 /* Compares two result files of the workload: prints "<set>_agree PERCENT" and
  * "<set>_differ COUNT" on stdout for the camera and the shadow rays, lists the first
  * rays that differ (with their pixel) on stderr, and returns 0, or 1 when either set
- * agrees on fewer than min_percent of its rays (2: unreadable files). */
-int bench_agree(const char *workload, const char *path_a, const char *path_b, double min_percent);
+ * agrees on fewer than min_percent of its rays (2: unreadable files). With neighbours,
+ * camera rays whose two triangles share a vertex (a ray through their common edge,
+ * rounded to either side by float and by double) count as agreeing for that verdict;
+ * they are printed apart either way. */
+int bench_agree(const char *workload, const char *path_a, const char *path_b, double min_percent, bool neighbours);
 
 #endif

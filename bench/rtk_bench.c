@@ -246,7 +246,7 @@ static int usage(void)
 {
     fputs("usage: rtk-bench rays SCENE OUT [--assets DIR] [--size WxH]\n"
           "       rtk-bench run SCENE WORKLOAD [--assets DIR] [--repeats N] [--results FILE]\n"
-          "       rtk-bench agree WORKLOAD RESULTS_A RESULTS_B [--min PERCENT]\n",
+          "       rtk-bench agree WORKLOAD RESULTS_A RESULTS_B [--min PERCENT] [--neighbours]\n",
           stderr);
     return 2;
 }
@@ -255,8 +255,14 @@ int main(int argc, char **argv)
 {
     if (argc >= 5 && !strcmp(argv[1], "agree")) {
         double min = 99.99;
-        if (argc != 5 && !(argc == 7 && !strcmp(argv[5], "--min") && sscanf(argv[6], "%lf", &min) == 1)) return usage();
-        return bench_agree(argv[2], argv[3], argv[4], min);
+        bool neighbours = false;
+        for (int i = 5; i < argc; i++) {
+            if (!strcmp(argv[i], "--neighbours"))
+                neighbours = true;
+            else if (!(i + 1 < argc && !strcmp(argv[i], "--min") && sscanf(argv[++i], "%lf", &min) == 1))
+                return usage();
+        }
+        return bench_agree(argv[2], argv[3], argv[4], min, neighbours);
     }
     if (argc < 4 || (strcmp(argv[1], "rays") && strcmp(argv[1], "run"))) return usage();
     rtp_scene_options opt = rtp_scene_default_options();
