@@ -57,8 +57,9 @@ count heavy_verdict heavy "heavy render"
 [ -z "$fixed_rtk" ] || count heavy_verdict heavy-fixed "heavy render, fixed build, 100x75"
 echo "valgrind: took $((SECONDS - start)) s"
 
-passed=$(sed -n 's/^bad-inputs: \([0-9]*\) passed, \([0-9]*\) failed$/\1/p' "$logs/bad-inputs.log")
-failed=$(sed -n 's/^bad-inputs: \([0-9]*\) passed, \([0-9]*\) failed$/\2/p' "$logs/bad-inputs.log")
+# The catalogue's last line, "bad-inputs: N passed, M failed" and perhaps a note after it.
+passed=$(sed -n 's/^bad-inputs: \([0-9]*\) passed, \([0-9]*\) failed.*$/\1/p' "$logs/bad-inputs.log")
+failed=$(sed -n 's/^bad-inputs: \([0-9]*\) passed, \([0-9]*\) failed.*$/\2/p' "$logs/bad-inputs.log")
 [ -n "$passed" ] || { passed=0 failed=1; } # the catalogue did not finish
 [ $bad_rc = 0 ] || [ "$failed" != 0 ] || failed=1
 passed=$((passed + heavy_passed)) failed=$((failed + heavy_failed))
