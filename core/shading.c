@@ -22,7 +22,7 @@ bool rt_shading_hit(const rt_tracer *tr, const rt_ray *ray, rt_ray_kind kind, ui
     const rt_primed *pr = depth == 0 && kind == RT_RAY_CAMERA ? tr->primed : NULL;
     if (pr ? !pr->found : !rt_shading_nearest(tr, ray, &hit)) return false;
     if (pr) hit = pr->hit;
-    rt_surface s = rt_surface_at(scene, ray, &hit);
+    rt_surface s = rt_surface_at(scene, ray, &hit, tr->log != NULL);
     const rt_material *mat = &scene->materials[s.material];
     p->point = s.point;
     p->v = rt_v3_neg(ray->direction);
@@ -83,7 +83,7 @@ static rt_vec3 shadow_attenuation(const rt_tracer *tr, rt_vec3 point, rt_vec3 to
             return atten;
         }
         if (known) hit = tr->primed->shadow_hit[light];
-        rt_surface s = rt_surface_at(scene, &ray, &hit);
+        rt_surface s = rt_surface_at(scene, &ray, &hit, tr->log != NULL);
         rt_vec3 kt = mode == RT_SHADOWS_OPAQUE
                          ? rt_v3(RT_ZERO, RT_ZERO, RT_ZERO)
                          : rt_surface_channel(scene, &scene->materials[s.material].transmittance, s.uv);

@@ -34,7 +34,26 @@ static rt_surface triangle_surface(const rt_scene *scene, const rt_scene_hit *hi
     return s;
 }
 
-static rt_surface quadric_surface(const rt_scene *scene, const rt_ray *ray, const rt_scene_hit *hit, rt_surface s)
+bool rt_material_textured(const rt_material *m)
+{
+    return m->diffuse.texture != RT_NO_TEXTURE || m->specular.texture != RT_NO_TEXTURE ||
+           m->emissive.texture != RT_NO_TEXTURE || m->transmittance.texture != RT_NO_TEXTURE;
+}
+
+/* A quadric's texture coordinates at object-space point q (format.md §4.6). */
+static rt_vec2 quadric_uv(const rt_object *obj, rt_part part, rt_vec3 q)
+{
+    rt_real two_pi = rt_mul(RT_C(2.0), RT_PI);
+    if (obj->kind == RT_SHAPE_SPHERE) {
+        rt_real y = rt_clamp(rt_mul(q.y, RT_C(2.0)), rt_neg(RT_ONE), RT_ONE);
+        return v2(rt_add(RT_C(0.5), rt_div(rt_atan2(q.z, q.x), two_pi)), rt_sub(RT_C(0.5), rt_div(rt_asin(y), RT_PI)));
+    }
+    if (part == RT_PART_SURFACE) return v2(rt_div(rt_atan2(q.z, q.x), two_pi), rt_sub(RT_C(0.5), q.y));
+    return v2(rt_add(RT_C(0.5), q.x), rt_sub(RT_C(0.5), q.z));
+}
+
+static rt_surface quadric_surface(const rt_scene *scene, const rt_ray *ray, const rt_scene_hit *hit, bool all_uv,
+                                  rt_surface s)
 {
     s.object = scene->quadric_objects[hit->prim - scene->triangle_count];
     const rt_object *obj = &scene->objects[s.object];
@@ -43,31 +62,28 @@ static rt_surface quadric_surface(const rt_scene *scene, const rt_ray *ray, cons
     rt_vec3 d = rt_affine_vector(&obj->to_object, ray->direction);
     rt_vec3 q = rt_v3_madd(o, d, hit->hit.t);
     rt_vec3 n_obj;
-    rt_real two_pi = rt_mul(RT_C(2.0), RT_PI);
-    if (obj->kind == RT_SHAPE_SPHERE) {
+    if (obj->kind == RT_SHAPE_SPHERE)
         n_obj = q;
-        rt_real y = rt_clamp(rt_mul(q.y, RT_C(2.0)), rt_neg(RT_ONE), RT_ONE);
-        s.uv = v2(rt_add(RT_C(0.5), rt_div(rt_atan2(q.z, q.x), two_pi)), rt_sub(RT_C(0.5), rt_div(rt_asin(y), RT_PI)));
-    } else if (hit->hit.part == RT_PART_SURFACE) {
+    else if (hit->hit.part == RT_PART_SURFACE)
         n_obj = rt_v3(q.x, RT_ZERO, q.z);
-        s.uv = v2(rt_div(rt_atan2(q.z, q.x), two_pi), rt_sub(RT_C(0.5), q.y));
-    } else {
+    else
         n_obj = rt_v3(RT_ZERO, hit->hit.part == RT_PART_CAP_TOP ? RT_ONE : rt_neg(RT_ONE), RT_ZERO);
-        s.uv = v2(rt_add(RT_C(0.5), q.x), rt_sub(RT_C(0.5), q.z));
-    }
     s.normal = rt_v3_normalize(rt_mat3_apply(&obj->normal_to_world, n_obj));
     s.geometric_normal = s.normal;
+    /* uv costs an atan2 and an asin; untextured materials never read it. */
+    bool want_uv = all_uv || rt_material_textured(&scene->materials[obj->material]);
+    s.uv = want_uv ? quadric_uv(obj, hit->hit.part, q) : v2(RT_ZERO, RT_ZERO);
     return s;
 }
 
-rt_surface rt_surface_at(const rt_scene *scene, const rt_ray *ray, const rt_scene_hit *hit)
+rt_surface rt_surface_at(const rt_scene *scene, const rt_ray *ray, const rt_scene_hit *hit, bool all_uv)
 {
     rt_surface s;
     s.point = rt_v3_madd(ray->origin, ray->direction, hit->hit.t);
     if (hit->prim < scene->triangle_count)
         s = triangle_surface(scene, hit, s);
     else
-        s = quadric_surface(scene, ray, hit, s);
+        s = quadric_surface(scene, ray, hit, all_uv, s);
     s.material = scene->objects[s.object].material;
     return s;
 }

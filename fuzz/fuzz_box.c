@@ -24,7 +24,7 @@ static void check_hit(const rt_scene *scene, const fz_trs *trs, const rt_ray *ra
     if (fz_triangle_crossing(p[tri->v[0]], p[tri->v[1]], p[tri->v[2]], ray->origin, ray->direction, &x))
         FZ_CHECK(t >= lo - x.tol_t && t <= hi + x.tol_t, "hit at t = %.17Lg, the box surface lies in [%.17Lg, %.17Lg]",
                  t, lo, hi);
-    rt_surface s = rt_surface_at(scene, ray, hit);
+    rt_surface s = rt_surface_at(scene, ray, hit, true);
     fz_check_unit(s.normal, "cube normal");
     fz_check_unit(s.geometric_normal, "cube geometric normal");
     /* The Cube's normals face out of the box; the flat faces make both normals agree. */

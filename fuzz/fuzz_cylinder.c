@@ -89,7 +89,7 @@ static void check_ray(const rt_scene *scene, const fz_trs *trs, rt_ray ray)
         long double cap = hit.hit.part == RT_PART_CAP_TOP ? 0.5L : -0.5L;
         FZ_CHECK(fabsl(q.y - cap) <= tol && r2 <= 0.25L + tol, "cap hit at r^2 = %.17Lg, y = %.17Lg", r2, q.y);
     }
-    rt_surface surf = rt_surface_at(scene, &ray, &hit);
+    rt_surface surf = rt_surface_at(scene, &ray, &hit, true);
     fz_check_unit(surf.normal, "cylinder normal");
     /* Outward: the cylinder is convex and contains its centre. */
     fz_v3l out = fz_l_sub(fz_l(surf.point), fz_l(trs->translation));

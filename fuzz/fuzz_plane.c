@@ -24,7 +24,7 @@ static void check_ray(const rt_scene *scene, const fz_trs *trs, rt_ray ray)
         FZ_CHECK(hit.hit.b1 >= RT_ZERO && hit.hit.b2 >= RT_ZERO &&
                      rt_to_double(hit.hit.b1) + rt_to_double(hit.hit.b2) <= 1 + 4 * FZ_EPS,
                  "barycentrics %.17g, %.17g outside the triangle", rt_to_double(hit.hit.b1), rt_to_double(hit.hit.b2));
-        rt_surface s = rt_surface_at(scene, &ray, &hit);
+        rt_surface s = rt_surface_at(scene, &ray, &hit, true);
         fz_check_unit(s.normal, "plane normal");
         fz_check_unit(s.geometric_normal, "plane geometric normal");
         FZ_CHECK(rt_v3_dot(s.normal, s.geometric_normal) > RT_ZERO, "shading and geometric normals on opposite sides");

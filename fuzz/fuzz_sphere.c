@@ -59,7 +59,7 @@ static void check_ray(const rt_scene *scene, const fz_trs *trs, rt_ray ray)
     fz_v3l q = fz_l_along(o, d, rt_to_double(hit.hit.t));
     long double off = fabsl(fz_l_dot(q, q) - 0.25L);
     FZ_CHECK(off <= FZ_TOL * s * s, "hit point is %.3Lg off the sphere (scale %.3Lg)", off, s);
-    rt_surface surf = rt_surface_at(scene, &ray, &hit);
+    rt_surface surf = rt_surface_at(scene, &ray, &hit, true);
     fz_check_unit(surf.normal, "sphere normal");
     /* Outward: the normal leaves the centre's side of the tangent plane. */
     fz_v3l out = fz_l_sub(fz_l(surf.point), fz_l(trs->translation));

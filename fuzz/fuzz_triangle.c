@@ -46,7 +46,7 @@ static void check_hit(const rt_scene *scene, const rt_ray *ray, const rt_scene_h
     long double l2 = fmaxl(fz_l_dot(fz_l_sub(fz_l(p[1]), a), fz_l_sub(fz_l(p[1]), a)),
                            fz_l_dot(fz_l_sub(fz_l(p[2]), a), fz_l_sub(fz_l(p[2]), a)));
     if (!(fz_l_dot(n, n) > 1e-12L * l2 * l2)) return; /* degenerate: no normal to speak of */
-    rt_surface s = rt_surface_at(scene, ray, hit);
+    rt_surface s = rt_surface_at(scene, ray, hit, true);
     fz_check_unit(s.normal, "triangle normal");
     fz_check_unit(s.geometric_normal, "triangle geometric normal");
     /* Not flipped: on the side of cross(b - a, c - a). */

@@ -186,7 +186,7 @@ Test(precision, a_slivers_normals_are_unit_length)
     rt_scene_hit hit = {0};
     hit.prim = 0;
     hit.hit.t = RT_C(0.75);
-    rt_surface surf = rt_surface_at(&scene, &ray, &hit);
+    rt_surface surf = rt_surface_at(&scene, &ray, &hit, true);
     long double gn = len_of(surf.geometric_normal), n = len_of(surf.normal);
     cr_assert(fabsl(gn - 1) <= 16 * ULP && fabsl(n - 1) <= 16 * ULP, "normal lengths %.17Lg, %.17Lg", gn, n);
     cr_assert(rt_to_double(surf.geometric_normal.y) < -0.999999, "the sliver lies in y = 0.25, wound towards -y");
