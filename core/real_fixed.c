@@ -136,10 +136,22 @@ rt_real rt_dot3_div(rt_real a0, rt_real b0, rt_real a1, rt_real b1, rt_real a2, 
     return rt_fx_signed(rt_fx_div128_round(hi, lo, rt_fx_mag(d)), negative != (d < 0));
 }
 
-/* round(2^14 * 2 / (sqrt(i / 16) + sqrt((i + 1) / 16))), i = 4..15: 1/sqrt(x) on each
- * sixteenth of [1/4, 1) to within 2^-5, the seed of the Newton iteration in rt_sqrt. */
-static const uint16_t rsqrt_seed[12] = {30942, 27974, 25724, 23944, 22488, 21270,
-                                        20231, 19330, 18540, 17840, 17213, 16648};
+/* round(2^14 * 2 / (sqrt(i / 256) + sqrt((i + 1) / 256))), i = 64..255 (python3): 1/sqrt(x)
+ * on each 256th of [1/4, 1) to within 2^-8, the seed of the Newton iteration in rt_sqrt. */
+static const uint16_t rsqrt_seed[192] = {
+    32641, 32391, 32146, 31907, 31674, 31445, 31221, 31002, 30787, 30577, 30371, 30170, 29972, 29778, 29587, 29401,
+    29218, 29038, 28861, 28688, 28518, 28350, 28186, 28024, 27866, 27710, 27556, 27405, 27257, 27110, 26967, 26825,
+    26686, 26548, 26413, 26280, 26149, 26020, 25893, 25767, 25644, 25522, 25402, 25283, 25167, 25052, 24938, 24826,
+    24715, 24606, 24498, 24392, 24287, 24184, 24081, 23980, 23881, 23782, 23685, 23589, 23494, 23400, 23307, 23216,
+    23125, 23036, 22948, 22860, 22774, 22688, 22604, 22520, 22437, 22356, 22275, 22195, 22116, 22038, 21960, 21883,
+    21808, 21732, 21658, 21585, 21512, 21440, 21368, 21298, 21228, 21159, 21090, 21022, 20955, 20888, 20822, 20757,
+    20692, 20628, 20564, 20501, 20439, 20377, 20316, 20255, 20195, 20135, 20076, 20017, 19959, 19902, 19845, 19788,
+    19732, 19676, 19621, 19566, 19512, 19458, 19405, 19352, 19299, 19247, 19196, 19144, 19093, 19043, 18993, 18943,
+    18894, 18845, 18797, 18749, 18701, 18653, 18606, 18560, 18513, 18467, 18422, 18376, 18331, 18287, 18242, 18198,
+    18155, 18111, 18068, 18025, 17983, 17941, 17899, 17857, 17816, 17775, 17734, 17694, 17654, 17614, 17574, 17535,
+    17496, 17457, 17418, 17380, 17342, 17304, 17267, 17229, 17192, 17155, 17119, 17082, 17046, 17010, 16974, 16939,
+    16904, 16869, 16834, 16799, 16765, 16731, 16697, 16663, 16629, 16596, 16563, 16530, 16497, 16465, 16432, 16400,
+};
 
 /* True when s^2 > hi:lo. */
 static bool square_above(uint64_t s, uint64_t hi, uint64_t lo)
@@ -149,15 +161,16 @@ static bool square_above(uint64_t s, uint64_t hi, uint64_t lo)
 }
 
 /* round(sqrt(n)) for n = hi:lo < 2^126, from multiplications only: x = n 4^k scaled into
- * [1/4, 1) as 64 bits, four Newton steps y <- y (3 - x y^2) / 2 towards 1/sqrt(x) (Q61,
- * 2^-5 -> about 2^-58), then s ~ x y / 2^k, which lands within a few units of floor(sqrt(n))
- * and is corrected exactly. It is rounded up exactly when n - s^2 > s. */
+ * [1/4, 1) as 64 bits, three Newton steps y <- y (3 - x y^2) / 2 towards 1/sqrt(x) (Q61,
+ * 2^-8 -> 2^-15.4 -> 2^-30.2 -> about 2^-59), then s ~ x y / 2^k, which lands within a
+ * few units of floor(sqrt(n)) and is corrected exactly. It is rounded up exactly when
+ * n - s^2 > s. */
 static uint64_t root128(uint64_t hi, uint64_t lo)
 {
     int k = (hi ? __builtin_clzll(hi) : 64 + __builtin_clzll(lo)) / 2;
     uint64_t x = k == 0 ? hi : k < 32 ? hi << 2 * k | lo >> (64 - 2 * k) : lo << (2 * k - 64);
-    uint64_t y = (uint64_t)rsqrt_seed[(x >> 60) - 4] << 47, plo;
-    for (int i = 0; i < 4; i++) {
+    uint64_t y = (uint64_t)rsqrt_seed[(x >> 56) - 64] << 47, plo;
+    for (int i = 0; i < 3; i++) {
         uint64_t phi = rt_fx_umul128(y, y, &plo);
         uint64_t xyy = rt_fx_umul128(x, phi << 3 | plo >> 61, &plo); /* x y^2 in Q61 */
         phi = rt_fx_umul128(y, (UINT64_C(3) << 61) - xyy, &plo);
