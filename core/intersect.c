@@ -22,7 +22,8 @@ rt_ray_setup rt_intersect_prepare(rt_ray ray)
     rt_real inv[3];
     for (int k = 0; k < 3; k++) {
         rt_real c = rt_v3_get(d, k);
-        inv[k] = c != RT_ZERO ? rt_div(RT_ONE, c) : RT_REAL_MAX;
+        /* 1 / dz is sz, already divided (a division is the dearest operation in Q32.32). */
+        inv[k] = c == RT_ZERO ? RT_REAL_MAX : k == rs.kz ? rs.sz : rt_div(RT_ONE, c);
     }
     rs.inv_direction = rt_v3(inv[0], inv[1], inv[2]);
     return rs;
