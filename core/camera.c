@@ -2,15 +2,20 @@
 #include "camera.h"
 #include "sample.h"
 
-/* P - eye for the perspective camera's image-plane point (x, y): the image plane sits
- * Focus Distance ahead (format.md §7.2), which is also the plane in focus (§7.5). */
-static rt_vec3 focal_offset(const rt_camera *cam, rt_real sx, rt_real sy)
+/* The image plane sits Focus Distance ahead (format.md §7.2), which is also the plane in
+ * focus (§7.5); these vectors span it, the same for every ray. */
+void rt_camera_prepare(rt_camera *cam)
 {
     rt_real focus = cam->trace.focus_distance > RT_ZERO ? cam->trace.focus_distance : RT_ONE;
-    rt_vec3 f = rt_v3_scale(cam->forward, focus);
-    rt_vec3 u = rt_v3_scale(cam->up, rt_mul(focus, cam->tan_half_fov));
-    rt_vec3 r = rt_v3_scale(cam->right, rt_mul(rt_mul(focus, cam->tan_half_fov), cam->aspect));
-    return rt_v3_add(rt_v3_add(f, rt_v3_scale(r, sx)), rt_v3_scale(u, sy));
+    cam->plane_forward = rt_v3_scale(cam->forward, focus);
+    cam->plane_up = rt_v3_scale(cam->up, rt_mul(focus, cam->tan_half_fov));
+    cam->plane_right = rt_v3_scale(cam->right, rt_mul(rt_mul(focus, cam->tan_half_fov), cam->aspect));
+}
+
+/* P - eye for the perspective camera's image-plane point (x, y). */
+static rt_vec3 focal_offset(const rt_camera *cam, rt_real sx, rt_real sy)
+{
+    return rt_v3_add(rt_v3_add(cam->plane_forward, rt_v3_scale(cam->plane_right, sx)), rt_v3_scale(cam->plane_up, sy));
 }
 
 rt_ray rt_camera_ray(const rt_camera *cam, rt_real x, rt_real y)
@@ -53,9 +58,11 @@ rt_ray rt_camera_grid_ray(const rt_camera *cam, uint32_t column, uint32_t row, u
 {
     uint32_t j = rt_camera_row_from_bottom(cam, row);
     rt_real s = rt_from_int(side);
-    rt_real x =
-        rt_div(rt_add(rt_from_int(column), rt_div(rt_add(rt_from_int(a), RT_C(0.5)), s)), rt_from_int(cam->width));
-    rt_real y = rt_div(rt_add(rt_from_int(j), rt_div(rt_add(rt_from_int(b), RT_C(0.5)), s)), rt_from_int(cam->height));
+    /* With one cell the cell centre is 0.5, exactly what the division gives. */
+    rt_real cell_x = side == 1 ? RT_C(0.5) : rt_div(rt_add(rt_from_int(a), RT_C(0.5)), s);
+    rt_real cell_y = side == 1 ? RT_C(0.5) : rt_div(rt_add(rt_from_int(b), RT_C(0.5)), s);
+    rt_real x = rt_div(rt_add(rt_from_int(column), cell_x), rt_from_int(cam->width));
+    rt_real y = rt_div(rt_add(rt_from_int(j), cell_y), rt_from_int(cam->height));
     return rt_camera_ray(cam, x, y);
 }
 

@@ -8,6 +8,8 @@
 /* The image's y counts rows from the bottom (format.md §7), the buffer's from the top. */
 static inline uint32_t rt_camera_row_from_bottom(const rt_camera *cam, uint32_t row) { return cam->height - 1 - row; }
 
+/* Fills the camera's plane_* vectors from its other fields (the scene build calls it). */
+void rt_camera_prepare(rt_camera *cam);
 /* The camera ray through image point (x, y) in [0,1]^2, y = 0 at the bottom (format.md §7). */
 rt_ray rt_camera_ray(const rt_camera *cam, rt_real x, rt_real y);
 /* The same through the point `lens` ([0,1)^2, mapped to the disc of diameter Aperture

@@ -166,6 +166,8 @@ typedef struct {
 typedef struct {
     rt_vec3 eye, forward, right, up;
     rt_real tan_half_fov, aspect;
+    /* forward, right and up scaled to the image plane at Focus Distance (rt_camera_prepare) */
+    rt_vec3 plane_forward, plane_right, plane_up;
     bool perspective;
     rt_real ortho_width;
     uint32_t width, height;

@@ -1,6 +1,7 @@
 /* rt_scene_build: turns a loader's description into the world-space scene the
  * renderer reads. Everything is validated here, at the kernel's boundary. */
 #include "bvh.h"
+#include "camera.h"
 #include "mesh.h"
 
 static rt_status fail(rt_build_error *err, rt_status status, const char *what, uint32_t object)
@@ -233,6 +234,7 @@ static rt_status build_camera(const rt_camera_desc *c, rt_camera *cam, rt_build_
         !rt_is_finite(cam->trace.std_error_threshold))
         return fail(err, RT_ERR_INVALID, "camera focus, aperture, view width or a sampling threshold is not finite",
                     UINT32_MAX);
+    rt_camera_prepare(cam);
     return RT_OK;
 }
 
