@@ -105,6 +105,22 @@ Test(verify, a_scene_that_cannot_render_fails_and_is_an_error_in_junit)
     cr_expect(strstr(read_all(junit), "errors=\"1\"") != NULL);
 }
 
+/* A scene path with markup, a control character and a byte that is not UTF-8: the report
+ * shows them escaped and holds only valid UTF-8. */
+Test(verify, the_junit_report_stays_well_formed_for_any_scene_name)
+{
+    write_text(manifest, "0123456789abcdef0123456789abcdef0123456789abcdef0123456789abcdef  "
+                         "no/<such>&\x01\xff\xc3\xa9.yaml\n");
+    char *out = NULL;
+    cr_assert_eq(verify(&out, 4, manifest, "--junit", junit), RTP_EXIT_THRESHOLD);
+    free(out);
+    const char *xml = read_all(junit);
+    cr_expect(strstr(xml, "no/&lt;such&gt;&amp;\\x01\\xff\xc3\xa9.yaml") != NULL, "%s", xml);
+    for (const unsigned char *p = (const unsigned char *)xml; *p; p++)
+        cr_expect(*p >= 0x20 || *p == '\n', "a raw control byte 0x%02x in the report", *p);
+    cr_expect(strchr(xml, '\xff') == NULL, "a raw 0xff byte in the report");
+}
+
 Test(verify, a_quoted_scene_path_may_hold_spaces)
 {
     char cmd[512];

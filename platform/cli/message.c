@@ -22,34 +22,40 @@ static size_t utf8_printable(const unsigned char *s)
     return n;
 }
 
-void rtp_message_escape(const char *s, char *out, size_t size)
+size_t rtp_message_escape_char(const char *s, char piece[8], size_t *step)
 {
     static const char named[] = "\a\b\t\n\v\f\r", letters[] = "abtnvfr";
     const unsigned char *p = (const unsigned char *)s;
+    size_t n = utf8_printable(p);
+    if (n > 0) { /* a printable character beyond ASCII */
+        memcpy(piece, p, n);
+        *step = n;
+        return n;
+    }
+    *step = 1;
+    if (*p >= 0x20 && *p < 0x7f) {
+        piece[0] = (char)*p;
+        return 1;
+    }
+    if (*p < 0x20 && strchr(named, *p)) {
+        piece[0] = '\\';
+        piece[1] = letters[strchr(named, *p) - named];
+        return 2;
+    }
+    return (size_t)snprintf(piece, 8, "\\x%02x", *p);
+}
+
+void rtp_message_escape(const char *s, char *out, size_t size)
+{
     size_t len = 0;
     if (size == 0) return;
-    while (*p) {
+    while (*s) {
         char piece[8];
-        size_t n, step = utf8_printable(p);
-        if (step > 0) { /* a printable character beyond ASCII */
-            memcpy(piece, p, step);
-            n = step;
-        } else if (*p >= 0x20 && *p < 0x7f) {
-            piece[0] = (char)*p;
-            n = step = 1;
-        } else if (*p < 0x20 && strchr(named, *p)) {
-            piece[0] = '\\';
-            piece[1] = letters[strchr(named, *p) - named];
-            n = 2;
-            step = 1;
-        } else {
-            n = (size_t)snprintf(piece, sizeof piece, "\\x%02x", *p);
-            step = 1;
-        }
+        size_t step, n = rtp_message_escape_char(s, piece, &step);
         if (len + n >= size) break;
         memcpy(out + len, piece, n);
         len += n;
-        p += step;
+        s += step;
     }
     out[len] = '\0';
 }

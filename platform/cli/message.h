@@ -7,6 +7,9 @@
 
 #include <stddef.h>
 
+/* The character at s (non-empty) as it is shown: itself, or escaped (\n, \x1b...), into
+ * piece; returns the length of that and sets *step to the bytes of s it stands for. */
+size_t rtp_message_escape_char(const char *s, char piece[8], size_t *step);
 /* s with its control characters and invalid UTF-8 escaped, into out (cut to fit). */
 void rtp_message_escape(const char *s, char *out, size_t size);
 /* Prints "rtk <cmd>: <formatted message>" and a newline on stderr, escaped, in one write. */

@@ -232,17 +232,21 @@ static int read_manifest(const char *path, manifest *m)
     return rc;
 }
 
+/* s as XML character data: markup characters as entities, control characters and bytes
+ * that are not UTF-8 shown escaped as in rtk's messages, so the report stays well-formed. */
 static void xml_text(FILE *out, const char *s)
 {
-    for (; *s; s++) {
+    while (*s) {
+        char piece[8];
+        size_t step, n = rtp_message_escape_char(s, piece, &step);
         switch (*s) {
         case '&': fputs("&amp;", out); break;
         case '<': fputs("&lt;", out); break;
         case '>': fputs("&gt;", out); break;
         case '"': fputs("&quot;", out); break;
-        default:
-            if ((unsigned char)*s >= 0x20 || *s == '\t') fputc(*s, out);
+        default: fwrite(piece, 1, n, out);
         }
+        s += step;
     }
 }
 
