@@ -44,7 +44,8 @@ static const char usage[] =
     "  --tiles N, --parts N  the part count N for --missing (as in --part I/N)\n"
     "  --threads N         threads for --missing's cut estimate (default: all cores)\n"
     "  --max-memory SIZE   in every mode: the cap on all the memory rtk allocates (default 4G)\n"
-    "With --missing, the scene options give the render's settings, as for rtk render:\n" RTP_CLI_SCENE_OPTIONS_HELP "\n"
+    "With --missing, the scene options give the render's settings, as for rtk render\n"
+    "(without it they are refused: the parts hold the settings):\n" RTP_CLI_SCENE_OPTIONS_HELP "\n"
     "Parts and the scene must be regular files ('-' is not one: a part digests its scene\n"
     "file). Exit codes: 0 ok, 2 bad arguments (also -o naming one of the parts), 3 a part\n"
     "or scene is missing, unreadable, invalid or does not fit the others, 4 output or\n"
@@ -59,6 +60,7 @@ typedef struct {
     uint32_t part_count, tiles, threads;
     bool hash;
     rtp_scene_options build;
+    const char *scene_option; /* the first render setting given; only --missing reads one */
 } stitch_args;
 
 static int parse_args(int argc, char **argv, stitch_args *a)
@@ -71,7 +73,10 @@ static int parse_args(int argc, char **argv, stitch_args *a)
         const char *arg = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
         int common = rtp_cli_common_option("stitch", usage, argc, argv, &i, &a->build);
         if (common < 0) return -common;
-        if (common > 0) continue;
+        if (common > 0) {
+            if (!a->scene_option && strcmp(arg, "--max-memory")) a->scene_option = arg;
+            continue;
+        }
         if (!strcmp(arg, "-o") || !strcmp(arg, "--output")) {
             if (!val) return rtp_cli_usage_error("stitch", "missing file after", arg);
             a->output = val, i++;
@@ -107,6 +112,10 @@ static int parse_args(int argc, char **argv, stitch_args *a)
     }
     if (a->part_count == 0) return rtp_cli_usage_error("stitch", "no part files given", NULL);
     if (a->tiles) return rtp_cli_usage_error("stitch", "--tiles is for --missing", NULL);
+    /* The parts carry their settings; an option that would change them changes nothing. */
+    if (a->scene_option)
+        return rtp_cli_usage_error("stitch",
+                                   "the parts hold the render's settings; this is for --missing:", a->scene_option);
     if (a->mode == MODE_CHECK && (a->output || a->hash))
         return rtp_cli_usage_error("stitch", "--check writes no image", NULL);
     if (a->mode == MODE_STITCH && !a->output && !a->hash)
