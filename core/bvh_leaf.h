@@ -12,8 +12,8 @@
 static bool quadric_intersect(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs, rt_prim_hit *hit)
 {
     const rt_object *obj = &scene->objects[scene->quadric_objects[prim - scene->triangle_count]];
-    rt_vec3 o = rt_affine_point(&obj->to_object, rs->ray.origin);
-    rt_vec3 d = rt_affine_vector(&obj->to_object, rs->ray.direction);
+    rt_vec3 o = rt_object_point(obj, rs->ray.origin);
+    rt_vec3 d = rt_object_vector(obj, rs->ray.direction);
     /* Solve with a unit object-space direction and scale t back: the short direction of a
      * scaled-up object would leave Q32.32 only a few bits in d.d. */
     rt_real len = rt_v3_length(d);

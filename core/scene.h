@@ -144,6 +144,7 @@ typedef struct {
     uint32_t source;
     rt_affine to_world, to_object;
     rt_mat3 normal_to_world; /* inverse transpose of to_world.linear */
+    bool to_object_diagonal; /* to_object.linear is zero off its diagonal (no rotation) */
     /* A mesh's triangles are rt_scene.triangles[first_triangle .. + triangle_count). */
     uint32_t first_triangle, triangle_count;
 } rt_object;

@@ -112,6 +112,7 @@ static rt_status build_objects(const rt_scene_desc *d, rt_arena *arena, rt_scene
                         "transform cannot be inverted (a scale of 0, or numbers too large or too small?)", i);
         obj->to_object = inv;
         obj->normal_to_world = rt_mat3_transpose(&inv.linear);
+        obj->to_object_diagonal = rt_mat3_is_diagonal(&inv.linear);
         if (o->kind != RT_SHAPE_MESH) {
             quadrics++;
             continue;

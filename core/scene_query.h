@@ -12,6 +12,31 @@ typedef struct {
     uint32_t prim; /* primitive reference (see rt_scene) */
 } rt_scene_hit;
 
+/* A world-space point or direction in the object's own space (rt_object.to_object), and
+ * an object-space normal in the world's; the fixed build skips a rotation-free matrix's
+ * zeros, with the same result. */
+static inline rt_vec3 rt_object_point(const rt_object *obj, rt_vec3 p)
+{
+#ifdef RT_REAL_FIXED
+    if (obj->to_object_diagonal) return rt_affine_point_diagonal(&obj->to_object, p);
+#endif
+    return rt_affine_point(&obj->to_object, p);
+}
+static inline rt_vec3 rt_object_vector(const rt_object *obj, rt_vec3 v)
+{
+#ifdef RT_REAL_FIXED
+    if (obj->to_object_diagonal) return rt_mat3_apply_diagonal(&obj->to_object.linear, v);
+#endif
+    return rt_affine_vector(&obj->to_object, v);
+}
+static inline rt_vec3 rt_object_normal_to_world(const rt_object *obj, rt_vec3 n)
+{
+#ifdef RT_REAL_FIXED
+    if (obj->to_object_diagonal) return rt_mat3_apply_diagonal(&obj->normal_to_world, n); /* its transpose */
+#endif
+    return rt_mat3_apply(&obj->normal_to_world, n);
+}
+
 /* Tests one primitive against the ray. */
 bool rt_scene_prim_intersect(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs, rt_prim_hit *hit);
 

@@ -58,8 +58,8 @@ static rt_surface quadric_surface(const rt_scene *scene, const rt_ray *ray, cons
     s.object = scene->quadric_objects[hit->prim - scene->triangle_count];
     const rt_object *obj = &scene->objects[s.object];
     /* The object-space point, from the object-space ray (as the intersector saw it). */
-    rt_vec3 o = rt_affine_point(&obj->to_object, ray->origin);
-    rt_vec3 d = rt_affine_vector(&obj->to_object, ray->direction);
+    rt_vec3 o = rt_object_point(obj, ray->origin);
+    rt_vec3 d = rt_object_vector(obj, ray->direction);
     rt_vec3 q = rt_v3_madd(o, d, hit->hit.t);
     rt_vec3 n_obj;
     if (obj->kind == RT_SHAPE_SPHERE)
@@ -68,7 +68,7 @@ static rt_surface quadric_surface(const rt_scene *scene, const rt_ray *ray, cons
         n_obj = rt_v3(q.x, RT_ZERO, q.z);
     else
         n_obj = rt_v3(RT_ZERO, hit->hit.part == RT_PART_CAP_TOP ? RT_ONE : rt_neg(RT_ONE), RT_ZERO);
-    s.normal = rt_v3_normalize(rt_mat3_apply(&obj->normal_to_world, n_obj));
+    s.normal = rt_v3_normalize(rt_object_normal_to_world(obj, n_obj));
     s.geometric_normal = s.normal;
     /* uv costs an atan2 and an asin; untextured materials never read it. */
     bool want_uv = all_uv || rt_material_textured(&scene->materials[obj->material]);

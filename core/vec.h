@@ -118,6 +118,23 @@ static inline rt_vec3 rt_affine_point(const rt_affine *a, rt_vec3 p)
     return rt_v3_add(rt_mat3_apply(&a->linear, p), a->translation);
 }
 static inline rt_vec3 rt_affine_vector(const rt_affine *a, rt_vec3 v) { return rt_mat3_apply(&a->linear, v); }
+static inline bool rt_mat3_is_diagonal(const rt_mat3 *m)
+{
+    return m->m[0][1] == RT_ZERO && m->m[0][2] == RT_ZERO && m->m[1][0] == RT_ZERO && m->m[1][2] == RT_ZERO &&
+           m->m[2][0] == RT_ZERO && m->m[2][1] == RT_ZERO;
+}
+/* rt_mat3_apply and rt_affine_point of a diagonal matrix from its diagonal alone. In
+ * Q32.32 a zero coefficient's product is exactly 0 and adding it changes nothing, so these
+ * are the same bits; in double they are not (-0 + +0, infinity times 0), so only the fixed
+ * build takes them (rt_object_point and its kin). */
+static inline rt_vec3 rt_mat3_apply_diagonal(const rt_mat3 *m, rt_vec3 v)
+{
+    return rt_v3(rt_mul(m->m[0][0], v.x), rt_mul(m->m[1][1], v.y), rt_mul(m->m[2][2], v.z));
+}
+static inline rt_vec3 rt_affine_point_diagonal(const rt_affine *a, rt_vec3 p)
+{
+    return rt_v3_add(rt_mat3_apply_diagonal(&a->linear, p), a->translation);
+}
 
 rt_mat3 rt_mat3_mul(const rt_mat3 *a, const rt_mat3 *b);
 rt_mat3 rt_mat3_transpose(const rt_mat3 *a);

@@ -7,6 +7,7 @@
 #include <math.h>
 
 #include <stdlib.h>
+#include <string.h>
 
 #include "arena.h"
 #include "intersect.h"
@@ -191,4 +192,33 @@ Test(precision, a_slivers_normals_are_unit_length)
     cr_assert(fabsl(gn - 1) <= 16 * ULP && fabsl(n - 1) <= 16 * ULP, "normal lengths %.17Lg, %.17Lg", gn, n);
     cr_assert(rt_to_double(surf.geometric_normal.y) < -0.999999, "the sliver lies in y = 0.25, wound towards -y");
     free(memory);
+}
+
+/* The fixed build transforms rotation-free objects by their matrices' diagonals alone
+ * (rt_object_point and its kin): the same bits as the whole product, zeros, saturated
+ * and one-lsb values included. In double the same holds for nonzero finite values. */
+Test(precision, a_diagonal_matrix_transforms_by_its_diagonal_alone)
+{
+#ifdef RT_REAL_FIXED
+    const rt_real values[] = {RT_ZERO,      RT_C(1.0),  RT_C(-2.5), RT_C(3.0e-9), RT_REAL_MAX,
+                              -RT_REAL_MAX, (rt_real)1, RT_C(1e5),  RT_C(-7e4),   RT_C(0.4)};
+#else
+    const rt_real values[] = {RT_C(1.0),     RT_C(-2.5), RT_C(3.0e-9), RT_C(1e300),
+                              RT_C(-1e-300), RT_C(1e5),  RT_C(-7e4),   RT_C(0.4)};
+#endif
+    const int n = (int)(sizeof values / sizeof values[0]);
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++) {
+            rt_affine a = rt_affine_identity();
+            a.linear.m[0][0] = values[i];
+            a.linear.m[1][1] = values[j];
+            a.linear.m[2][2] = values[(i + j) % n];
+            a.translation = rt_v3(values[(i + 1) % n], values[(j + 2) % n], values[(i * j) % n]);
+            rt_vec3 p = rt_v3(values[(i + 3) % n], values[j], values[(i + 5 * j) % n]);
+            rt_vec3 full = rt_affine_point(&a, p), diag = rt_affine_point_diagonal(&a, p);
+            cr_assert(!memcmp(&full, &diag, sizeof full), "point %d %d differs", i, j);
+            full = rt_mat3_apply(&a.linear, p);
+            diag = rt_mat3_apply_diagonal(&a.linear, p);
+            cr_assert(!memcmp(&full, &diag, sizeof full), "vector %d %d differs", i, j);
+        }
 }
