@@ -1,7 +1,7 @@
 /* Ray-primitive intersection tests; see intersect.h. */
 #include "intersect.h"
 
-rt_ray_setup rt_intersect_prepare(rt_ray ray)
+static rt_ray_setup prepare(rt_ray ray, bool shear)
 {
     rt_ray_setup rs;
     rs.ray = ray;
@@ -16,18 +16,22 @@ rt_ray_setup rt_intersect_prepare(rt_ray ray)
         rs.kx = rs.ky;
         rs.ky = swap;
     }
-    rs.sx = rt_div(rt_v3_get(d, rs.kx), dz);
-    rs.sy = rt_div(rt_v3_get(d, rs.ky), dz);
-    rs.sz = rt_div(RT_ONE, dz);
+    rs.sx = shear ? rt_div(rt_v3_get(d, rs.kx), dz) : RT_ZERO;
+    rs.sy = shear ? rt_div(rt_v3_get(d, rs.ky), dz) : RT_ZERO;
+    rs.sz = shear ? rt_div(RT_ONE, dz) : RT_ZERO;
     rt_real inv[3];
     for (int k = 0; k < 3; k++) {
         rt_real c = rt_v3_get(d, k);
         /* 1 / dz is sz, already divided (a division is the dearest operation in Q32.32). */
-        inv[k] = c == RT_ZERO ? RT_REAL_MAX : k == rs.kz ? rs.sz : rt_div(RT_ONE, c);
+        inv[k] = c == RT_ZERO ? RT_REAL_MAX : shear && k == rs.kz ? rs.sz : rt_div(RT_ONE, c);
     }
     rs.inv_direction = rt_v3(inv[0], inv[1], inv[2]);
     return rs;
 }
+
+rt_ray_setup rt_intersect_prepare(rt_ray ray) { return prepare(ray, true); }
+
+rt_ray_setup rt_intersect_prepare_no_triangles(rt_ray ray) { return prepare(ray, false); }
 
 /* Smallest root of a t^2 + 2 h t + c in (t_min, t_max), given w2 = r^2 - |f|^2 with f the
  * point of closest approach (see closest_approach_w2), so the quarter discriminant

@@ -42,7 +42,7 @@ static void trace_batch(const rt_tracer *tr, const uint32_t *col, const uint32_t
     if (n == 0) return;
     for (uint32_t i = 0; i < n; i++) {
         ray[i] = rt_camera_pixel_ray(&scene->camera, col[s[i].pixel], row[s[i].pixel], s[i].sample);
-        rs[i] = rt_intersect_prepare(ray[i]);
+        rs[i] = rt_scene_prepare(scene, ray[i]);
     }
     rt_scene_hit hit[BATCH];
     rt_scene_nearest_stream(scene, rs, n, hit, found);
@@ -61,7 +61,7 @@ static void trace_batch(const rt_tracer *tr, const uint32_t *col, const uint32_t
         for (uint32_t i = 0; i < n; i++) {
             rt_ray r;
             if (!found[i] || !rt_shading_shadow_ray(tr, l, &p[i], scene->lights[l].position, &r)) continue;
-            shadow[m] = rt_intersect_prepare(r);
+            shadow[m] = rt_scene_prepare(scene, r);
             owner[m++] = i;
         }
         bool blocked[BATCH];

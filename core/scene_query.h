@@ -37,6 +37,13 @@ static inline rt_vec3 rt_object_normal_to_world(const rt_object *obj, rt_vec3 n)
     return rt_mat3_apply(&obj->normal_to_world, n);
 }
 
+/* rt_intersect_prepare for queries of this scene: without its triangles' shear when it
+ * has none. */
+static inline rt_ray_setup rt_scene_prepare(const rt_scene *scene, rt_ray ray)
+{
+    return scene->triangle_count ? rt_intersect_prepare(ray) : rt_intersect_prepare_no_triangles(ray);
+}
+
 /* Tests one primitive against the ray. */
 bool rt_scene_prim_intersect(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs, rt_prim_hit *hit);
 

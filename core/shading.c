@@ -8,7 +8,7 @@
 
 bool rt_shading_nearest(const rt_tracer *tr, const rt_ray *ray, rt_scene_hit *hit)
 {
-    rt_ray_setup rs = rt_intersect_prepare(*ray);
+    rt_ray_setup rs = rt_scene_prepare(tr->scene, *ray);
     return rt_scene_nearest(tr->scene, &rs, tr->use_bvh, hit);
 }
 
@@ -62,7 +62,7 @@ static rt_vec3 shadow_attenuation(const rt_tracer *tr, rt_vec3 point, rt_vec3 to
     if (mode == RT_SHADOWS_OPAQUE && !tr->log) {
         bool blocked = primed == 2;
         if (!primed) {
-            rt_ray_setup rs = rt_intersect_prepare(rt_ray_make(point, to_light, distance));
+            rt_ray_setup rs = rt_scene_prepare(scene, rt_ray_make(point, to_light, distance));
             blocked = rt_scene_any(scene, &rs, tr->use_bvh);
         }
         return blocked ? rt_v3(RT_ZERO, RT_ZERO, RT_ZERO) : atten;
