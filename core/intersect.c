@@ -1,7 +1,7 @@
 /* Ray-primitive intersection tests; see intersect.h. */
 #include "intersect.h"
 
-static rt_ray_setup prepare(rt_ray ray, bool shear)
+__attribute__((always_inline)) static inline rt_ray_setup prepare(rt_ray ray, bool shear)
 {
     rt_ray_setup rs;
     rs.ray = ray;
