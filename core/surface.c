@@ -40,7 +40,7 @@ bool rt_material_textured(const rt_material *m)
            m->emissive.texture != RT_NO_TEXTURE || m->transmittance.texture != RT_NO_TEXTURE;
 }
 
-/* A quadric's texture coordinates at object-space point q (format.md §4.6). */
+/* A quadric's texture coordinates at object-space point q (format.md §5.5, §5.6). */
 static rt_vec2 quadric_uv(const rt_object *obj, rt_part part, rt_vec3 q)
 {
     rt_real two_pi = rt_mul(RT_C(2.0), RT_PI);
