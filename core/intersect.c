@@ -112,8 +112,9 @@ bool rt_intersect_cylinder(rt_vec3 o, rt_vec3 d, rt_real t_min, rt_real t_max, r
     if (d.y != RT_ZERO) {
         for (int top = 0; top < 2; top++) {
             rt_real y = top ? RT_C(0.5) : RT_C(-0.5), rise = rt_sub(y, o.y);
-            /* A cap behind the origin (rise against d.y) gives t <= 0 <= t_min: no division. */
-            if (t_min >= RT_ZERO && !(rise > RT_ZERO ? d.y > RT_ZERO : rise < RT_ZERO && d.y < RT_ZERO)) continue;
+            /* A cap not ahead (rise and d.y not of one sign) gives t <= 0 <= t_min: no division. */
+            bool ahead = (rise > RT_ZERO && d.y > RT_ZERO) || (rise < RT_ZERO && d.y < RT_ZERO);
+            if (t_min >= RT_ZERO && !ahead) continue;
             t = rt_div(rise, d.y);
             if (!(t > t_min && t < best) || !rt_is_finite(t)) continue;
             rt_real x = rt_add(o.x, rt_mul(t, d.x)), z = rt_add(o.z, rt_mul(t, d.z));

@@ -9,7 +9,7 @@
 /* The per-ray constants of the triangle and box tests. */
 rt_ray_setup rt_intersect_prepare(rt_ray ray);
 /* The same for a scene without triangles: the triangle test's shear (sx, sy, sz) is left
- * 0, sparing three of the five divisions (see rt_scene_prepare). */
+ * 0, sparing two of its five divisions (see rt_scene_prepare). */
 rt_ray_setup rt_intersect_prepare_no_triangles(rt_ray ray);
 
 /* Which surface of a primitive was hit. */
