@@ -62,57 +62,37 @@ rt_aabb rt_bvh_prim_bounds(const rt_scene *scene, uint32_t prim)
 
 /* ---- Build ---- */
 
-/* A primitive being sorted into the tree: its padded bounds travel with it, so each
- * node's passes read its references in order instead of gathering them. */
-typedef struct {
-    rt_aabb bounds;
-    uint32_t prim;
-} build_ref;
+/* A primitive being sorted into the tree is a build_ref (bvh_bin.h): its box travels with
+ * it, so each node's passes read its references in order instead of gathering them. */
 
 typedef struct {
     uint32_t node, first, count, depth;
     rt_aabb bounds, centroids; /* of the references, from the parent's bins and partition */
 } build_task;
 
-/* The box centre, as the binning sees the primitive. */
-static rt_vec3 centroid_of(const build_ref *r) { return rt_v3_scale(rt_v3_add(r->bounds.lo, r->bounds.hi), RT_C(0.5)); }
-
 /* The references binned so far, per axis and bin: the union of their bounds and their
  * count. A union with an empty box changes no bit, so the sweeps leave empty bins (count
  * 0) out. */
 typedef struct {
-    rt_aabb box[3][BIN_COUNT];
+    bin_box box[3][BIN_COUNT];
     uint32_t count[3][BIN_COUNT];
 } bins;
-
-static binning binning_of(const build_task *t)
-{
-    binning g;
-    for (int axis = 0; axis < 3; axis++) {
-        g.lo[axis] = rt_v3_get(t->centroids.lo, axis);
-        rt_real hi = rt_v3_get(t->centroids.hi, axis);
-        g.active[axis] = hi > g.lo[axis];
-        g.scale[axis] = g.active[axis] ? rt_div(rt_from_int(BIN_COUNT), rt_sub(hi, g.lo[axis])) : RT_ZERO;
-    }
-    return g;
-}
 
 /* Bins refs[first .. first + count) into b. */
 static void bin_refs(bins *b, const binning *g, const build_ref *refs, uint32_t first, uint32_t count)
 {
     for (int axis = 0; axis < 3; axis++)
         for (int k = 0; k < BIN_COUNT; k++) {
-            b->box[axis][k] = rt_aabb_empty();
+            b->box[axis][k] = bin_box_empty();
             b->count[axis][k] = 0;
         }
     for (uint32_t i = first; i < first + count; i++) {
-        /* Loaded once: the bins' stores could alias it. */
-        box_value bounds = box_load(&refs[i].bounds);
+        bin_box box = ref_box(&refs[i]);
         int k[3];
-        box_bins(g, bounds, k);
-        box_grow(&b->box[0][k[0]], bounds);
-        box_grow(&b->box[1][k[1]], bounds);
-        box_grow(&b->box[2][k[2]], bounds);
+        box_bins(g, box, k);
+        bin_box_grow(&b->box[0][k[0]], box);
+        bin_box_grow(&b->box[1][k[1]], box);
+        bin_box_grow(&b->box[2][k[2]], box);
         b->count[0][k[0]]++;
         b->count[1][k[1]]++;
         b->count[2][k[2]]++;
@@ -126,7 +106,7 @@ static void merge_bins(bins *into, const bins *later)
 {
     for (int axis = 0; axis < 3; axis++) {
         for (int k = 0; k < BIN_COUNT; k++) {
-            box_grow(&into->box[axis][k], box_load(&later->box[axis][k]));
+            bin_box_grow(&into->box[axis][k], later->box[axis][k]);
             into->count[axis][k] += later->count[axis][k];
         }
     }
@@ -134,7 +114,7 @@ static void merge_bins(bins *into, const bins *later)
 
 typedef struct {
     int axis, bin;       /* refs in bins <= bin go left */
-    rt_real lo, scale;   /* the axis' binning */
+    binning binning;     /* the task's */
     rt_aabb left, right; /* the children's bounds, unions of their bins */
 } split;
 
@@ -155,22 +135,22 @@ static bool price_split(const build_task *t, const binning *g, const bins *b, sp
          * with a used bin beyond them, are priced. */
         rt_real right_area[BIN_COUNT];
         uint32_t right_n[BIN_COUNT];
-        rt_aabb acc = rt_aabb_empty();
+        bin_box acc = bin_box_empty();
         uint32_t n = 0;
         for (int k = BIN_COUNT - 1; k > 0; k--) {
             if (!used[k]) continue;
-            acc = aabb_union(acc, b->box[axis][k]);
+            bin_box_grow(&acc, b->box[axis][k]);
             n += b->count[axis][k];
-            right_area[k] = rt_aabb_half_area(acc);
+            right_area[k] = rt_aabb_half_area(bin_box_aabb(acc));
             right_n[k] = n;
         }
-        acc = rt_aabb_empty();
+        acc = bin_box_empty();
         n = 0;
         for (int k = 0, plane = -1; k < BIN_COUNT; k++) {
             if (!used[k]) continue;
             /* The plane after the previous used bin: refs up to it left, from bin k right. */
             if (plane >= 0) {
-                rt_real cost = rt_add(visit, rt_add(rt_mul(rt_from_int(n), rt_aabb_half_area(acc)),
+                rt_real cost = rt_add(visit, rt_add(rt_mul(rt_from_int(n), rt_aabb_half_area(bin_box_aabb(acc))),
                                                     rt_mul(rt_from_int(right_n[k]), right_area[k])));
                 if (cost < best_cost) {
                     best_cost = cost;
@@ -179,20 +159,20 @@ static bool price_split(const build_task *t, const binning *g, const bins *b, sp
                     out->bin = plane;
                 }
             }
-            acc = aabb_union(acc, b->box[axis][k]);
+            bin_box_grow(&acc, b->box[axis][k]);
             n += b->count[axis][k];
             plane = k;
         }
     }
     if (!found) return false;
-    out->lo = g->lo[out->axis];
-    out->scale = g->scale[out->axis];
-    out->left = out->right = rt_aabb_empty();
+    out->binning = *g;
+    bin_box left = bin_box_empty(), right = bin_box_empty();
     for (int k = 0; k < BIN_COUNT; k++) {
         if (!b->count[out->axis][k]) continue;
-        rt_aabb *side = k <= out->bin ? &out->left : &out->right;
-        *side = aabb_union(*side, b->box[out->axis][k]);
+        bin_box_grow(k <= out->bin ? &left : &right, b->box[out->axis][k]);
     }
+    out->left = bin_box_aabb(left);
+    out->right = bin_box_aabb(right);
     return true;
 }
 
@@ -204,8 +184,8 @@ static uint32_t partition(build_ref *refs, uint32_t first, uint32_t count, const
     centre_bounds left = centre_bounds_empty(), right = centre_bounds_empty();
     uint32_t i = first, j = first + count;
     while (i < j) {
-        centre c = box_centre(box_load(&refs[i].bounds));
-        if (bin_of(centre_axis(c, s->axis), s->lo, s->scale) <= s->bin) {
+        centre c = box_centre(ref_box(&refs[i]));
+        if (centre_bin(&s->binning, c, s->axis) <= s->bin) {
             centre_grow(&left, c);
             i++;
         } else {
@@ -285,7 +265,7 @@ static uint32_t build_subtree(const build *b, build_task root, build_task *stack
         split s;
         bool splits = false;
         if (task.count > LEAF_MIN && task.depth < RT_BVH_MAX_DEPTH) {
-            binning g = binning_of(&task);
+            binning g = binning_make(task.centroids);
             bins all;
             bin_refs(&all, &g, b->refs, task.first, task.count);
             splits = price_split(&task, &g, &all, &s);
@@ -308,15 +288,16 @@ static void bound_refs_job(void *arg, uint32_t index, uint32_t worker)
     (void)worker;
     build *b = arg;
     uint32_t first = index * b->plan.chunk, end = first + min_u32(b->plan.chunk, b->scene->prim_count - first);
-    rt_aabb bounds = rt_aabb_empty(), centroids = rt_aabb_empty();
+    bin_box bounds = bin_box_empty();
+    centre_bounds centroids = centre_bounds_empty();
     for (uint32_t i = first; i < end; i++) {
-        b->refs[i].bounds = rt_bvh_prim_bounds(b->scene, i);
-        b->refs[i].prim = i;
-        bounds = aabb_union(bounds, b->refs[i].bounds);
-        centroids = aabb_add_point(centroids, centroid_of(&b->refs[i]));
+        b->refs[i] = ref_make(rt_bvh_prim_bounds(b->scene, i), i);
+        bin_box box = ref_box(&b->refs[i]);
+        bin_box_grow(&bounds, box);
+        centre_grow(&centroids, box_centre(box));
     }
-    b->chunk_bounds[index] = bounds;
-    b->chunk_centroids[index] = centroids;
+    b->chunk_bounds[index] = bin_box_aabb(bounds);
+    b->chunk_centroids[index] = centre_bounds_aabb(centroids);
 }
 
 static void bin_chunk_job(void *arg, uint32_t index, uint32_t worker)
@@ -353,7 +334,7 @@ static uint32_t split_level(build *b, uint32_t count, uint32_t *subtrees, uint32
 {
     uint32_t chunks = 0;
     for (uint32_t t = 0; t < count; t++) {
-        b->level_binning[t] = binning_of(&b->level[t]);
+        b->level_binning[t] = binning_make(b->level[t].centroids);
         uint32_t end = b->level[t].first + b->level[t].count;
         for (uint32_t first = b->level[t].first; first < end;) {
             bin_chunk *c = &b->chunks[chunks++];

@@ -1,11 +1,14 @@
-/* The passes of the BVH build (bvh.c) for one reference: its centre, the bin of it on
- * each axis, a bin's box grown by the reference's box, and the centre bounds the
- * partition gathers. In the double build on
- * x86, two coordinates per SSE2 operation; elsewhere by the rt_ ops one at a time. Both
- * compute the same bits: addpd, subpd and mulpd round each lane as addsd, subsd and
- * mulsd do, and minpd(a, b) and maxpd(a, b) are, lane by lane, a < b ? a : b and
- * a > b ? a : b (the second operand on ties and NaN), exactly rt_min and rt_max.
- * Core-internal. */
+/* The passes of the BVH build (bvh.c) for one reference: its box and centre, the bin of
+ * the centre on each axis, a bin's box grown by the reference's box, and the centre
+ * bounds the partition gathers. Core-internal.
+ *
+ * The double build sorts references by their padded box rounded outwards to floats, the
+ * precision of the stored nodes: a node's stored box is the same either way (rounding
+ * outwards is monotonic, so the rounded union is the union of the rounded boxes), and a
+ * reference is 32 bytes instead of 56. Its passes work on four float lanes (x, y, z and a
+ * lane kept 0) with the compilers' vector extensions: SSE on x86, NEON on aarch64,
+ * scalar code elsewhere, the same bits every way (IEEE single operations lane by lane;
+ * v4_min and v4_max are rt_min and rt_max). The fixed build keeps its Q32.32 boxes. */
 #ifndef RT_BVH_BIN_H
 #define RT_BVH_BIN_H
 
@@ -13,118 +16,185 @@
 
 #define BIN_COUNT 16
 
-/* How a task's centroids map to bins on each axis; a flat axis bins everything into
- * bin 0 (scale 0) and is never priced. */
+#ifndef RT_REAL_FIXED
+typedef float v4f __attribute__((vector_size(16)));
+typedef int32_t v4i __attribute__((vector_size(16)));
+typedef float v4f_load __attribute__((vector_size(16), aligned(4), may_alias));
+
+/* a < b ? a : b and a > b ? a : b lane by lane: the later operand on ties and NaN. */
+static inline v4f v4_min(v4f a, v4f b)
+{
+#ifdef __SSE__
+    return __builtin_ia32_minps(a, b);
+#else
+    v4i less = a < b;
+    return (v4f)((less & (v4i)a) | (~less & (v4i)b));
+#endif
+}
+static inline v4f v4_max(v4f a, v4f b)
+{
+#ifdef __SSE__
+    return __builtin_ia32_maxps(a, b);
+#else
+    v4i more = a > b;
+    return (v4f)((more & (v4i)a) | (~more & (v4i)b));
+#endif
+}
+
+/* A reference: its box's corners in lanes 0-2, the primitive in lo's fourth slot. */
 typedef struct {
-    rt_real lo[3], scale[3];
+    float lo[3];
+    uint32_t prim;
+    float hi[3], zero;
+} build_ref;
+
+typedef struct {
+    v4f lo, hi;
+} bin_box;
+
+static inline build_ref ref_make(rt_aabb padded, uint32_t prim)
+{
+    build_ref r = {{rt_bound_below(padded.lo.x, 0), rt_bound_below(padded.lo.y, 0), rt_bound_below(padded.lo.z, 0)},
+                   prim,
+                   {rt_bound_above(padded.hi.x, 0), rt_bound_above(padded.hi.y, 0), rt_bound_above(padded.hi.z, 0)},
+                   0.0f};
+    return r;
+}
+
+/* Loaded once per pass (the bins' stores could alias it), lo's fourth lane cleared. */
+static inline bin_box ref_box(const build_ref *r)
+{
+    const v4i xyz = {-1, -1, -1, 0};
+    return (bin_box){(v4f)((v4i) * (const v4f_load *)r->lo & xyz), *(const v4f_load *)r->hi};
+}
+
+static inline bin_box bin_box_empty(void)
+{
+    const v4f inf = {__builtin_inff(), __builtin_inff(), __builtin_inff(), __builtin_inff()};
+    return (bin_box){inf, -inf};
+}
+
+static inline void bin_box_grow(bin_box *acc, bin_box b)
+{
+    acc->lo = v4_min(acc->lo, b.lo);
+    acc->hi = v4_max(acc->hi, b.hi);
+}
+
+static inline rt_aabb bin_box_aabb(bin_box b)
+{
+    return (rt_aabb){{b.lo[0], b.lo[1], b.lo[2]}, {b.hi[0], b.hi[1], b.hi[2]}};
+}
+
+/* The box centre (lo + hi) / 2, the point the binning sees. */
+typedef v4f centre;
+
+static inline centre box_centre(bin_box b)
+{
+    const v4f half = {0.5f, 0.5f, 0.5f, 0.5f};
+    return (b.lo + b.hi) * half;
+}
+
+/* How a task's centres map to bins on each axis; a flat axis bins everything into bin
+ * 0 (scale 0) and is never priced. */
+typedef struct {
+    v4f lo, scale;
     bool active[3];
 } binning;
 
-/* floor((c - lo) scale) clamped to the bins, without a branch: clamped first (rt_max
- * takes 0 over NaN), then converted. */
-static inline int bin_of(rt_real c, rt_real lo, rt_real scale)
+static inline binning binning_make(rt_aabb centres)
 {
-    rt_real x = rt_min(rt_max(rt_mul(rt_sub(c, lo), scale), RT_ZERO), rt_from_int(BIN_COUNT - 1));
-    return (int)rt_floor_nonneg(x);
+    binning g = {{0}, {0}, {false}};
+    for (int axis = 0; axis < 3; axis++) {
+        float lo = (float)rt_v3_get(centres.lo, axis), hi = (float)rt_v3_get(centres.hi, axis);
+        g.lo[axis] = lo;
+        g.active[axis] = hi > lo;
+        g.scale[axis] = g.active[axis] ? (float)BIN_COUNT / (hi - lo) : 0.0f;
+    }
+    return g;
 }
 
-#if defined(__SSE2__) && !defined(RT_REAL_FIXED)
-typedef double pair_d __attribute__((vector_size(16), aligned(8), may_alias));
-typedef int32_t quad_i __attribute__((vector_size(16)));
-/* A box as three pairs: lo.x lo.y | lo.z hi.x | hi.y hi.z. */
-typedef struct {
-    pair_d p[3];
-} box_value;
-
-static inline box_value box_load(const rt_aabb *b)
+/* floor((c - lo) scale) clamped to the bins on every axis: clamped first (v4_max takes 0
+ * over NaN), then truncated. */
+static inline v4i centre_bins(const binning *g, centre c)
 {
-    const pair_d *p = (const pair_d *)b;
-    return (box_value){{p[0], p[1], p[2]}};
+    const v4f zero = {0.0f, 0.0f, 0.0f, 0.0f}, last = {BIN_COUNT - 1, BIN_COUNT - 1, BIN_COUNT - 1, BIN_COUNT - 1};
+    return __builtin_convertvector(v4_min(v4_max((c - g->lo) * g->scale, zero), last), v4i);
 }
 
-static inline void box_grow(rt_aabb *acc, box_value b)
+static inline void box_bins(const binning *g, bin_box b, int out[3])
 {
-    pair_d *a = (pair_d *)acc;
-    a[0] = __builtin_ia32_minpd(a[0], b.p[0]);
-    pair_d mixed = __builtin_ia32_maxpd(a[1], b.p[1]); /* lo.z takes the min */
-    mixed[0] = __builtin_ia32_minpd(a[1], b.p[1])[0];
-    a[1] = mixed;
-    a[2] = __builtin_ia32_maxpd(a[2], b.p[2]);
+    v4i k = centre_bins(g, box_centre(b));
+    out[0] = k[0];
+    out[1] = k[1];
+    out[2] = k[2];
 }
 
-/* A box's centre (lo + hi) 0.5, the point the binning sees: x and y as one pair. */
-typedef struct {
-    pair_d xy;
-    double z;
-} centre;
+/* The bin of c on one axis: a lane of centre_bins, so the partition agrees with the bins. */
+static inline int centre_bin(const binning *g, centre c, int axis) { return centre_bins(g, c)[axis]; }
 
-static inline centre box_centre(box_value b)
-{
-    const pair_d half = {0.5, 0.5};
-    pair_d hi_xy = __builtin_ia32_shufpd(b.p[1], b.p[2], 1);
-    return (centre){(b.p[0] + hi_xy) * half, (b.p[1][0] + b.p[2][1]) * 0.5};
-}
+typedef bin_box centre_bounds;
 
-static inline rt_real centre_axis(centre c, int axis) { return axis == 2 ? c.z : c.xy[axis]; }
+static inline centre_bounds centre_bounds_empty(void) { return bin_box_empty(); }
 
-/* The bins of b's centre: x and y from one pair. */
-static inline void box_bins(const binning *g, box_value b, int out[3])
-{
-    const pair_d zero = {0.0, 0.0}, last = {BIN_COUNT - 1, BIN_COUNT - 1};
-    centre c = box_centre(b);
-    pair_d x = (c.xy - *(const pair_d *)g->lo) * *(const pair_d *)g->scale;
-    quad_i bins = __builtin_ia32_cvttpd2dq(__builtin_ia32_minpd(__builtin_ia32_maxpd(x, zero), last));
-    out[0] = bins[0];
-    out[1] = bins[1];
-    out[2] = bin_of(c.z, g->lo[2], g->scale[2]);
-}
+static inline void centre_grow(centre_bounds *a, centre c) { bin_box_grow(a, (bin_box){c, c}); }
 
-/* The bounds of centres, as an rt_aabb grown by points would be. */
-typedef struct {
-    pair_d lo_xy, hi_xy;
-    double lo_z, hi_z;
-} centre_bounds;
-
-static inline centre_bounds centre_bounds_empty(void)
-{
-    return (centre_bounds){{RT_REAL_MAX, RT_REAL_MAX}, {-RT_REAL_MAX, -RT_REAL_MAX}, RT_REAL_MAX, -RT_REAL_MAX};
-}
-
-static inline void centre_grow(centre_bounds *a, centre c)
-{
-    a->lo_xy = __builtin_ia32_minpd(a->lo_xy, c.xy);
-    a->hi_xy = __builtin_ia32_maxpd(a->hi_xy, c.xy);
-    a->lo_z = rt_min(a->lo_z, c.z);
-    a->hi_z = rt_max(a->hi_z, c.z);
-}
-
-static inline rt_aabb centre_bounds_aabb(centre_bounds a)
-{
-    return (rt_aabb){{a.lo_xy[0], a.lo_xy[1], a.lo_z}, {a.hi_xy[0], a.hi_xy[1], a.hi_z}};
-}
+static inline rt_aabb centre_bounds_aabb(centre_bounds a) { return bin_box_aabb(a); }
 #else
-typedef rt_aabb box_value;
+/* The fixed build: the padded Q32.32 box as it is. */
+typedef struct {
+    rt_aabb bounds;
+    uint32_t prim;
+} build_ref;
 
-static inline box_value box_load(const rt_aabb *b) { return *b; }
+typedef rt_aabb bin_box;
 
-static inline void box_grow(rt_aabb *acc, box_value b)
+static inline build_ref ref_make(rt_aabb padded, uint32_t prim) { return (build_ref){padded, prim}; }
+
+static inline bin_box ref_box(const build_ref *r) { return r->bounds; }
+
+static inline bin_box bin_box_empty(void) { return rt_aabb_empty(); }
+
+static inline void bin_box_grow(bin_box *acc, bin_box b)
 {
     acc->lo = rt_v3_min(acc->lo, b.lo);
     acc->hi = rt_v3_max(acc->hi, b.hi);
 }
 
+static inline rt_aabb bin_box_aabb(bin_box b) { return b; }
+
 typedef rt_vec3 centre;
 
-static inline centre box_centre(box_value b) { return rt_v3_scale(rt_v3_add(b.lo, b.hi), RT_C(0.5)); }
+static inline centre box_centre(bin_box b) { return rt_v3_scale(rt_v3_add(b.lo, b.hi), RT_C(0.5)); }
 
-static inline rt_real centre_axis(centre c, int axis) { return rt_v3_get(c, axis); }
+typedef struct {
+    rt_real lo[3], scale[3];
+    bool active[3];
+} binning;
 
-static inline void box_bins(const binning *g, box_value b, int out[3])
+static inline binning binning_make(rt_aabb centres)
+{
+    binning g;
+    for (int axis = 0; axis < 3; axis++) {
+        g.lo[axis] = rt_v3_get(centres.lo, axis);
+        rt_real hi = rt_v3_get(centres.hi, axis);
+        g.active[axis] = hi > g.lo[axis];
+        g.scale[axis] = g.active[axis] ? rt_div(rt_from_int(BIN_COUNT), rt_sub(hi, g.lo[axis])) : RT_ZERO;
+    }
+    return g;
+}
+
+/* floor((c - lo) scale) clamped to the bins, without a branch: clamped first (rt_max
+ * takes 0 over NaN), then converted. */
+static inline int centre_bin(const binning *g, centre c, int axis)
+{
+    rt_real x = rt_mul(rt_sub(rt_v3_get(c, axis), g->lo[axis]), g->scale[axis]);
+    return (int)rt_floor_nonneg(rt_min(rt_max(x, RT_ZERO), rt_from_int(BIN_COUNT - 1)));
+}
+
+static inline void box_bins(const binning *g, bin_box b, int out[3])
 {
     centre c = box_centre(b);
-    out[0] = bin_of(c.x, g->lo[0], g->scale[0]);
-    out[1] = bin_of(c.y, g->lo[1], g->scale[1]);
-    out[2] = bin_of(c.z, g->lo[2], g->scale[2]);
+    for (int axis = 0; axis < 3; axis++) out[axis] = centre_bin(g, c, axis);
 }
 
 typedef rt_aabb centre_bounds;
