@@ -52,13 +52,39 @@ typedef struct {
     v4f lo, hi;
 } bin_box;
 
+typedef double v4d __attribute__((vector_size(32)));
+typedef int64_t v4l __attribute__((vector_size(32)));
+
+static inline v4f v4_select(v4i take, v4f a, v4f b) { return (v4f)((take & (v4i)a) | (~take & (v4i)b)); }
+
+/* rt_bound_above (up) or rt_bound_below of each coordinate of p, without their branches,
+ * which a box's coordinates make unpredictable: clamped to the float range (so the
+ * conversion cannot overflow), rounded to nearest, then one step outwards where that
+ * went inwards. Lane 3 is 0. */
+static inline v4f v4_round_outwards(rt_vec3 p, bool up)
+{
+    const v4d most = {RT_FLOAT_MAX, RT_FLOAT_MAX, RT_FLOAT_MAX, RT_FLOAT_MAX};
+    v4d x = {p.x, p.y, p.z, 0.0};
+    v4l above = x > most, below = x < -most;
+    v4d in_range = (v4d)((above & (v4l)most) | (below & (v4l)-most) | (~(above | below) & (v4l)x));
+    v4f f = __builtin_convertvector(in_range, v4f);
+    v4d back = __builtin_convertvector(f, v4d);
+    v4i inwards = __builtin_convertvector(up ? back < x : back > x, v4i);
+    /* The next float outwards: the bits one step from 0 on the outward side, one step
+     * towards it on the other (rt_float_step); from 0 the smallest subnormal. */
+    int32_t step = up ? 1 : -1;
+    v4i bits = (v4i)f, positive = f > 0.0f, negative = f < 0.0f;
+    v4i stepped = bits + (positive & step) - (negative & step);
+    int32_t least = up ? 1 : INT32_MIN + 1; /* +-0x1p-149f */
+    v4f smallest = (v4f)((v4i){0, 0, 0, 0} + least);
+    v4f next = v4_select(positive | negative, (v4f)stepped, smallest);
+    return v4_select(inwards, next, f);
+}
+
 static inline build_ref ref_make(rt_aabb padded, uint32_t prim)
 {
-    build_ref r = {{rt_bound_below(padded.lo.x, 0), rt_bound_below(padded.lo.y, 0), rt_bound_below(padded.lo.z, 0)},
-                   prim,
-                   {rt_bound_above(padded.hi.x, 0), rt_bound_above(padded.hi.y, 0), rt_bound_above(padded.hi.z, 0)},
-                   0.0f};
-    return r;
+    v4f lo = v4_round_outwards(padded.lo, false), hi = v4_round_outwards(padded.hi, true);
+    return (build_ref){{lo[0], lo[1], lo[2]}, prim, {hi[0], hi[1], hi[2]}, 0.0f};
 }
 
 /* Loaded once per pass (the bins' stores could alias it), lo's fourth lane cleared. */
