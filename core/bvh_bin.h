@@ -21,14 +21,16 @@ typedef float v4f __attribute__((vector_size(16)));
 typedef int32_t v4i __attribute__((vector_size(16)));
 typedef float v4f_load __attribute__((vector_size(16), aligned(4), may_alias));
 
+/* Lane by lane: a where `take` is all ones, b where it is 0. */
+static inline v4f v4_select(v4i take, v4f a, v4f b) { return (v4f)((take & (v4i)a) | (~take & (v4i)b)); }
+
 /* a < b ? a : b and a > b ? a : b lane by lane: the later operand on ties and NaN. */
 static inline v4f v4_min(v4f a, v4f b)
 {
 #ifdef __SSE__
     return __builtin_ia32_minps(a, b);
 #else
-    v4i less = a < b;
-    return (v4f)((less & (v4i)a) | (~less & (v4i)b));
+    return v4_select(a < b, a, b);
 #endif
 }
 static inline v4f v4_max(v4f a, v4f b)
@@ -36,8 +38,7 @@ static inline v4f v4_max(v4f a, v4f b)
 #ifdef __SSE__
     return __builtin_ia32_maxps(a, b);
 #else
-    v4i more = a > b;
-    return (v4f)((more & (v4i)a) | (~more & (v4i)b));
+    return v4_select(a > b, a, b);
 #endif
 }
 
@@ -54,8 +55,6 @@ typedef struct {
 
 typedef double v4d __attribute__((vector_size(32)));
 typedef int64_t v4l __attribute__((vector_size(32)));
-
-static inline v4f v4_select(v4i take, v4f a, v4f b) { return (v4f)((take & (v4i)a) | (~take & (v4i)b)); }
 
 /* rt_bound_above (up) or rt_bound_below of each coordinate of p, without their branches,
  * which a box's coordinates make unpredictable: clamped to the float range (so the

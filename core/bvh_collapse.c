@@ -98,6 +98,8 @@ static uint32_t collapse(const rt_bin_node *bin, int grid, rt_bvh_node *wide, co
                 continue;
             }
             node->child[c] = count;
+            /* Its children are read when it is popped: far apart in the binary tree's slots. */
+            __builtin_prefetch(&bin[kid->first]);
             RT_ASSERT(top < COLLAPSE_STACK);
             stack[top++] = (collapse_task){kids[c], count++, t.depth + 1};
         }
