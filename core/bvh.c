@@ -141,7 +141,7 @@ static bool price_split(const build_task *t, const binning *g, const bins *b, sp
             if (!used[k]) continue;
             bin_box_grow(&acc, b->box[axis][k]);
             n += b->count[axis][k];
-            right_area[k] = rt_aabb_half_area(bin_box_aabb(acc));
+            right_area[k] = bin_box_half_area(acc);
             right_n[k] = n;
         }
         acc = bin_box_empty();
@@ -150,7 +150,7 @@ static bool price_split(const build_task *t, const binning *g, const bins *b, sp
             if (!used[k]) continue;
             /* The plane after the previous used bin: refs up to it left, from bin k right. */
             if (plane >= 0) {
-                rt_real cost = rt_add(visit, rt_add(rt_mul(rt_from_int(n), rt_aabb_half_area(bin_box_aabb(acc))),
+                rt_real cost = rt_add(visit, rt_add(rt_mul(rt_from_int(n), bin_box_half_area(acc)),
                                                     rt_mul(rt_from_int(right_n[k]), right_area[k])));
                 if (cost < best_cost) {
                     best_cost = cost;

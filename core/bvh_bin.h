@@ -110,6 +110,14 @@ static inline rt_aabb bin_box_aabb(bin_box b)
     return (rt_aabb){{b.lo[0], b.lo[1], b.lo[2]}, {b.hi[0], b.hi[1], b.hi[2]}};
 }
 
+/* rt_aabb_half_area(bin_box_aabb(b)), the lanes converted together. */
+static inline rt_real bin_box_half_area(bin_box b)
+{
+    if (b.lo[0] > b.hi[0]) return RT_ZERO;
+    v4d e = __builtin_convertvector(b.hi, v4d) - __builtin_convertvector(b.lo, v4d);
+    return e[0] * e[1] + e[1] * e[2] + e[2] * e[0];
+}
+
 /* The box centre (lo + hi) / 2, the point the binning sees. */
 typedef v4f centre;
 
@@ -186,6 +194,8 @@ static inline void bin_box_grow(bin_box *acc, bin_box b)
 }
 
 static inline rt_aabb bin_box_aabb(bin_box b) { return b; }
+
+static inline rt_real bin_box_half_area(bin_box b) { return rt_aabb_half_area(b); }
 
 typedef rt_vec3 centre;
 
