@@ -50,6 +50,9 @@ static int gather_children(const rt_bin_node *bin, uint32_t b, int grid, uint32_
             if (bin[out[c]].count == 0 && (widest < 0 || area > widest_area)) widest = c, widest_area = area;
         }
         if (widest < 0) break;
+        /* The other inner children may be opened next, or become nodes: fetch their children at once. */
+        for (int c = 0; c < n; c++)
+            if (c != widest && bin[out[c]].count == 0) __builtin_prefetch(&bin[bin[out[c]].first]);
         uint32_t opened = out[widest];
         out[widest] = bin[opened].first;
         out[n++] = bin[opened].first + 1;
