@@ -236,8 +236,10 @@ typedef struct {
 #define SUBTREE_STACK (RT_BVH_MAX_DEPTH + 2)
 
 /* Stores task's node: a leaf, or, given its split s, an inner node whose two children
- * (written to kids) get their references by partition. */
-static void make_node(const build *b, const build_task *task, const split *s, build_task kids[2])
+ * (written to kids) get their references by partition, and as nodes the pair of slots
+ * at *next_pair (which advances past them) or, with next_pair NULL, the pair the split's
+ * position gives (bvh_binary.h). */
+static void make_node(const build *b, const build_task *task, const split *s, uint32_t *next_pair, build_task kids[2])
 {
     rt_bin_node *node = &b->nodes[task->node];
     rt_bvh_store_box(node->box, task->bounds, b->grid);
@@ -249,6 +251,10 @@ static void make_node(const build *b, const build_task *task, const split *s, bu
     uint32_t left_n = partition(b->refs, task->first, task->count, s, &left_c, &right_c);
     RT_ASSERT(0 < left_n && left_n < task->count);
     uint32_t left = 2 * (task->first + left_n) - 1;
+    if (next_pair) {
+        left = *next_pair;
+        *next_pair += 2;
+    }
     node->first = left;
     node->count = 0;
     kids[0] = (build_task){left, task->first, left_n, task->depth + 1, s->left, left_c};
@@ -258,7 +264,7 @@ static void make_node(const build *b, const build_task *task, const split *s, bu
 /* Builds the subtree of root depth first on one worker; returns its inner node count. */
 static uint32_t build_subtree(const build *b, build_task root, build_task *stack)
 {
-    uint32_t inner = 0, top = 0;
+    uint32_t inner = 0, top = 0, next_pair = 2 * root.first + 1;
     stack[top++] = root;
     while (top > 0) {
         build_task task = stack[--top], kids[2];
@@ -270,7 +276,7 @@ static uint32_t build_subtree(const build *b, build_task root, build_task *stack
             bin_refs(&all, &g, b->refs, task.first, task.count);
             splits = price_split(&task, &g, &all, &s);
         }
-        make_node(b, &task, splits ? &s : NULL, kids);
+        make_node(b, &task, splits ? &s : NULL, &next_pair, kids);
         if (!splits) continue;
         inner++;
         /* Right first, so the left subtree is built next (a bounded stack). */
@@ -312,7 +318,8 @@ static void split_level_job(void *arg, uint32_t index, uint32_t worker)
 {
     (void)worker;
     build *b = arg;
-    make_node(b, &b->level[index], b->level_splits[index] ? &b->level_split[index] : NULL, &b->children[2 * index]);
+    make_node(b, &b->level[index], b->level_splits[index] ? &b->level_split[index] : NULL, NULL,
+              &b->children[2 * index]);
 }
 
 static void subtree_job(void *arg, uint32_t index, uint32_t worker)

@@ -6,10 +6,13 @@
 #include "bvh.h"
 
 /* A binary node: its box as stored, and children nodes[first], nodes[first + 1]
- * (count 0) or references prim_refs[first .. first + count). The root is node 0; the
- * children of a node whose references split at index m (into [.., m) and [m, ..)) are
- * nodes 2m - 1 and 2m, so every node's place follows from the tree alone and separate
- * subtrees can be built at once without sharing a counter. */
+ * (count 0) or references prim_refs[first .. first + count). The root is node 0; in the
+ * levels split one at a time, the children of a node whose references split at index m
+ * (into [.., m) and [m, ..)) are nodes 2m - 1 and 2m, so every node's place follows from
+ * the tree alone and separate subtrees can be built at once without sharing a counter.
+ * Inside a subtree built whole, of references [f, f + c), its nodes' descendants take
+ * the 2c - 2 slots from 2f + 1 (which that scheme gives them, and no other node) pair by
+ * pair in the order they are made, so that the collapse finds them together. */
 typedef struct {
     rt_bound box[6];
     uint32_t first, count;
