@@ -56,19 +56,62 @@ typedef struct {
 typedef double v4d __attribute__((vector_size(32)));
 typedef int64_t v4l __attribute__((vector_size(32)));
 
-/* rt_bound_above (up) or rt_bound_below of each coordinate of p, without their branches,
- * which a box's coordinates make unpredictable: clamped to the float range (so the
- * conversion cannot overflow), rounded to nearest, then one step outwards where that
- * went inwards. Lane 3 is 0. */
-static inline v4f v4_round_outwards(rt_vec3 p, bool up)
+/* Each coordinate of p (and a fourth lane 0) clamped to the float range, so that the
+ * conversion cannot overflow, and rounded to the nearest float (*f); in *inwards, the
+ * lanes where that went inwards (below p if up, else above). */
+#ifdef __SSE2__
+typedef double v2d __attribute__((vector_size(16)));
+#ifdef __clang__
+#define V4_SHUFFLE(a, b, i, j, k, l) __builtin_shufflevector(a, b, i, j, k, l)
+#else
+#define V4_SHUFFLE(a, b, i, j, k, l) __builtin_shuffle(a, b, (v4i){i, j, k, l})
+#endif
+
+/* Two lanes in an SSE2 register (GCC turns the four-lane double operations of the
+ * generic version into scalar comparisons): the floats in lanes 0-1, and in *back, them
+ * as doubles. */
+static inline v4f v2_nearest(v2d x, v2d *back)
+{
+    const v2d most = {RT_FLOAT_MAX, RT_FLOAT_MAX};
+    /* max and min return their second operand on NaN, which the generic selects keep. */
+    v4f f = __builtin_ia32_cvtpd2ps(__builtin_ia32_minpd(most, __builtin_ia32_maxpd(-most, x)));
+#ifdef __clang__
+    *back = __builtin_convertvector(__builtin_shufflevector(f, f, 0, 1), v2d);
+#else
+    *back = __builtin_ia32_cvtps2pd(f);
+#endif
+    return f;
+}
+
+static inline void v4_nearest(rt_vec3 p, bool up, v4f *f, v4i *inwards)
+{
+    v2d xy = {p.x, p.y}, z0 = {p.z, 0.0}, back_xy, back_z0;
+    v4f f_xy = v2_nearest(xy, &back_xy), f_z0 = v2_nearest(z0, &back_z0);
+    v4i in_xy = (v4i)(up ? back_xy < xy : back_xy > xy), in_z0 = (v4i)(up ? back_z0 < z0 : back_z0 > z0);
+    *f = V4_SHUFFLE(f_xy, f_z0, 0, 1, 4, 5);
+    *inwards = V4_SHUFFLE(in_xy, in_z0, 0, 2, 4, 6); /* each 64-bit mask's low half */
+}
+#else
+static inline void v4_nearest(rt_vec3 p, bool up, v4f *f, v4i *inwards)
 {
     const v4d most = {RT_FLOAT_MAX, RT_FLOAT_MAX, RT_FLOAT_MAX, RT_FLOAT_MAX};
     v4d x = {p.x, p.y, p.z, 0.0};
     v4l above = x > most, below = x < -most;
     v4d in_range = (v4d)((above & (v4l)most) | (below & (v4l)-most) | (~(above | below) & (v4l)x));
-    v4f f = __builtin_convertvector(in_range, v4f);
-    v4d back = __builtin_convertvector(f, v4d);
-    v4i inwards = __builtin_convertvector(up ? back < x : back > x, v4i);
+    *f = __builtin_convertvector(in_range, v4f);
+    v4d back = __builtin_convertvector(*f, v4d);
+    *inwards = __builtin_convertvector(up ? back < x : back > x, v4i);
+}
+#endif
+
+/* rt_bound_above (up) or rt_bound_below of each coordinate of p, without their branches,
+ * which a box's coordinates make unpredictable: rounded to nearest (v4_nearest), then
+ * one step outwards where that went inwards. Lane 3 is 0. */
+static inline v4f v4_round_outwards(rt_vec3 p, bool up)
+{
+    v4f f;
+    v4i inwards;
+    v4_nearest(p, up, &f, &inwards);
     /* The next float outwards: the bits one step from 0 on the outward side, one step
      * towards it on the other (rt_float_step); from 0 the smallest subnormal. */
     int32_t step = up ? 1 : -1;
