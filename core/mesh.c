@@ -116,6 +116,16 @@ static rt_real loop_cos(const loop_table *w, uint32_t i, uint32_t k)
 
 /* ---- Loop subdivision: topology ---- */
 
+/* The edge from corner c to the next corner of its triangle, as (lower vertex, higher). */
+static uint64_t edge_key(const rt_mesh_desc *m, size_t c)
+{
+    uint32_t a = m->indices[c], b = m->indices[c % 3 == 2 ? c - 2 : c + 1];
+    return a < b ? (uint64_t)a << 32 | b : (uint64_t)b << 32 | a;
+}
+
+/* Corners ahead of the one being numbered whose slots are fetched. */
+#define EDGE_PREFETCH 16
+
 /* Numbers the edges of m in order of first appearance (triangles in order, edges ab bc ca):
  * tri_edge[3t + j] is the edge from corner j to corner j + 1 of triangle t. */
 static rt_status number_edges(const rt_mesh_desc *m, uint32_t *tri_edge, rt_arena *arena, uint32_t *edge_count)
@@ -131,8 +141,10 @@ static rt_status number_edges(const rt_mesh_desc *m, uint32_t *tri_edge, rt_aren
     }
     uint32_t count = 0;
     for (size_t c = 0; c < corners; c++) {
-        uint32_t a = m->indices[c], b = m->indices[c % 3 == 2 ? c - 2 : c + 1];
-        uint64_t key = a < b ? (uint64_t)a << 32 | b : (uint64_t)b << 32 | a;
+        /* Slots are random by design: ask for a later corner's slot while this one is probed. */
+        if (c + EDGE_PREFETCH < corners)
+            __builtin_prefetch(&slots[rt_hash_mix(edge_key(m, c + EDGE_PREFETCH)) & (cap - 1)]);
+        uint64_t key = edge_key(m, c);
         size_t s = rt_hash_mix(key) & (cap - 1);
         while (slots[s] != 0 && keys[slots[s] - 1] != key) s = (s + 1) & (cap - 1);
         if (slots[s] == 0) {
@@ -172,13 +184,22 @@ static void split(const rt_mesh_desc *m, const uint32_t *tri_edge, rt_vec3 *pos,
     }
 }
 
+/* What ring_of keeps about a neighbour w of the vertex v whose ring it builds: stamps
+ * (v + 1 while v's ring is built, 0 = never) and the chain of v's wedges starting at w.
+ * One record per vertex, so a neighbour costs one cache line, not four. */
+typedef struct {
+    uint32_t seen;      /* w is already in v's ring */
+    uint32_t head_mark; /* head below is v's */
+    uint32_t head;      /* the last wedge (y, z) of v with y = w, chained by link */
+    uint32_t z_mark;    /* w ends a wedge of v */
+} ring_vertex;
+
 /* Corners around each vertex (compressed rows) plus the scratch to order them into rings. */
 typedef struct {
     const uint32_t *indices;
     uint32_t *offsets; /* corners of v: corners[offsets[v] .. offsets[v + 1]) */
     uint32_t *corners;
-    /* Per vertex, stamped with v + 1 while v's ring is built (0 = never). */
-    uint32_t *seen, *head_mark, *head, *z_mark;
+    ring_vertex *vertex;
     /* Per corner of the current vertex: the wedge (y, z) of triangle (v, y, z). */
     uint32_t *wy, *wz, *link;
     uint8_t *used;
@@ -190,11 +211,8 @@ static rt_status ring_builder_init(ring_builder *b, const uint32_t *idx, uint32_
     b->indices = idx;
     b->offsets = RT_NEW_ARRAY(arena, uint32_t, (size_t)nv + 1);
     b->corners = rt_arena_alloc_array(arena, corners, sizeof *b->corners);
-    b->seen = RT_NEW_ARRAY(arena, uint32_t, nv);
-    b->head_mark = RT_NEW_ARRAY(arena, uint32_t, nv);
-    b->head = rt_arena_alloc_array(arena, nv, sizeof *b->head);
-    b->z_mark = RT_NEW_ARRAY(arena, uint32_t, nv);
-    if (!b->offsets || !b->corners || !b->seen || !b->head_mark || !b->head || !b->z_mark) return RT_ERR_NOMEM;
+    b->vertex = RT_NEW_ARRAY(arena, ring_vertex, nv);
+    if (!b->offsets || !b->corners || !b->vertex) return RT_ERR_NOMEM;
     for (size_t c = 0; c < corners; c++) b->offsets[idx[c] + 1]++;
     uint32_t most = 0;
     for (uint32_t v = 0; v < nv; v++) {
@@ -217,13 +235,13 @@ static rt_status ring_builder_init(ring_builder *b, const uint32_t *idx, uint32_
 /* Forgets every stamp, so the rings can be built again. */
 static void ring_builder_restart(ring_builder *b, uint32_t nv)
 {
-    for (uint32_t v = 0; v < nv; v++) b->seen[v] = b->head_mark[v] = b->z_mark[v] = 0;
+    for (uint32_t v = 0; v < nv; v++) b->vertex[v] = (ring_vertex){0, 0, 0, 0};
 }
 
 static uint32_t ring_append(ring_builder *b, uint32_t v, uint32_t k, uint32_t w)
 {
-    if (w == v || b->seen[w] == v + 1) return k;
-    b->seen[w] = v + 1;
+    if (w == v || b->vertex[w].seen == v + 1) return k;
+    b->vertex[w].seen = v + 1;
     b->ring[k] = w;
     return k + 1;
 }
@@ -231,11 +249,12 @@ static uint32_t ring_append(ring_builder *b, uint32_t v, uint32_t k, uint32_t w)
 /* An unused wedge of v starting at y, or NONE. */
 static uint32_t ring_take(ring_builder *b, uint32_t v, uint32_t y)
 {
-    if (b->head_mark[y] != v + 1) return NONE;
-    uint32_t i = b->head[y];
+    ring_vertex *r = &b->vertex[y];
+    if (r->head_mark != v + 1) return NONE;
+    uint32_t i = r->head;
     while (i != NONE && b->used[i]) i = b->link[i];
     if (i == NONE) return NONE;
-    b->head[y] = b->link[i];
+    r->head = b->link[i];
     b->used[i] = 1;
     return i;
 }
@@ -253,15 +272,16 @@ static uint32_t ring_of(ring_builder *b, uint32_t v)
         b->wy[i] = y;
         b->wz[i] = z;
         b->used[i] = 0;
-        if (b->head_mark[y] != stamp) b->head[y] = NONE;
-        b->head_mark[y] = stamp;
-        b->link[i] = b->head[y];
-        b->head[y] = i;
-        b->z_mark[z] = stamp;
+        ring_vertex *r = &b->vertex[y];
+        if (r->head_mark != stamp) r->head = NONE;
+        r->head_mark = stamp;
+        b->link[i] = r->head;
+        r->head = i;
+        b->vertex[z].z_mark = stamp;
     }
     uint32_t k = 0, open = 0, any = 0;
     for (;;) {
-        while (open < m && (b->used[open] || b->z_mark[b->wy[open]] == stamp)) open++;
+        while (open < m && (b->used[open] || b->vertex[b->wy[open]].z_mark == stamp)) open++;
         while (any < m && b->used[any]) any++;
         uint32_t s = open < m ? open : any;
         if (s == m) return k;
@@ -367,13 +387,20 @@ static rt_status subdivide_once(const rt_mesh_desc *in, bool last, const loop_ta
     return RT_OK;
 }
 
-/* Moves n bytes to a lower (or the same) address. */
+typedef uint64_t word __attribute__((may_alias));
+
+/* Moves n bytes to a lower (or the same) address, both 8-byte aligned (arena blocks):
+ * eight bytes at a time, each word read before any write can reach it, then the rest. */
 static void slide_down(void *to, const void *from, size_t n)
 {
-    uint8_t *d = to;
-    const uint8_t *s = from;
-    if (d != s)
-        for (size_t i = 0; i < n; i++) d[i] = s[i];
+    if (to == from) return;
+    word *d = to;
+    const word *s = from;
+    size_t words = n / sizeof(word);
+    for (size_t i = 0; i < words; i++) d[i] = s[i];
+    uint8_t *d_rest = (uint8_t *)(d + words);
+    const uint8_t *s_rest = (const uint8_t *)(s + words);
+    for (size_t i = 0; i < n % sizeof(word); i++) d_rest[i] = s_rest[i];
 }
 
 static void *slide(rt_arena *arena, const void *from, size_t n)
