@@ -50,3 +50,11 @@ void rt_arena_reset(rt_arena *a, size_t mark)
 {
     if (mark <= a->used) a->used = mark;
 }
+
+void *rt_arena_keep(rt_arena *a, const void *from, size_t n)
+{
+    void *to = rt_arena_alloc(a, n);
+    RT_ASSERT(to && (const uint8_t *)to <= (const uint8_t *)from);
+    if (to != from) __builtin_memmove(to, from, n);
+    return to;
+}

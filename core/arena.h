@@ -28,6 +28,11 @@ void *rt_arena_array(rt_arena *a, size_t count, size_t size);
 size_t rt_arena_mark(const rt_arena *a);
 void rt_arena_reset(rt_arena *a, size_t mark);
 
+/* Keeps n bytes at from, which was allocated after the mark the arena was just reset to:
+ * they move down to a new allocation (in the order they were allocated, each lands at or
+ * below where it was). Returns their new address. */
+void *rt_arena_keep(rt_arena *a, const void *from, size_t n);
+
 #define RT_NEW_ARRAY(arena, type, count) ((type *)rt_arena_array((arena), (count), sizeof(type)))
 
 #endif

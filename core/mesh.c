@@ -387,37 +387,14 @@ static rt_status subdivide_once(const rt_mesh_desc *in, bool last, const loop_ta
     return RT_OK;
 }
 
-typedef uint64_t word __attribute__((may_alias));
-
-/* Moves n bytes to a lower (or the same) address, both 8-byte aligned (arena blocks):
- * eight bytes at a time, each word read before any write can reach it, then the rest. */
-static void slide_down(void *to, const void *from, size_t n)
-{
-    if (to == from) return;
-    word *d = to;
-    const word *s = from;
-    size_t words = n / sizeof(word);
-    for (size_t i = 0; i < words; i++) d[i] = s[i];
-    uint8_t *d_rest = (uint8_t *)(d + words);
-    const uint8_t *s_rest = (const uint8_t *)(s + words);
-    for (size_t i = 0; i < n % sizeof(word); i++) d_rest[i] = s_rest[i];
-}
-
-static void *slide(rt_arena *arena, const void *from, size_t n)
-{
-    void *to = rt_arena_alloc(arena, n); /* cannot fail: it lands at or below from */
-    slide_down(to, from, n);
-    return to;
-}
-
 /* Releases everything since mark but m's arrays, which move down to mark in allocation order. */
 static void keep_only(rt_arena *arena, size_t mark, rt_mesh_desc *m)
 {
     rt_arena_reset(arena, mark);
-    m->indices = slide(arena, m->indices, 3 * (size_t)m->triangle_count * sizeof *m->indices);
-    if (m->uvs) m->uvs = slide(arena, m->uvs, m->vertex_count * sizeof *m->uvs);
-    m->positions = slide(arena, m->positions, m->vertex_count * sizeof *m->positions);
-    if (m->normals) m->normals = slide(arena, m->normals, m->vertex_count * sizeof *m->normals);
+    m->indices = rt_arena_keep(arena, m->indices, 3 * (size_t)m->triangle_count * sizeof *m->indices);
+    if (m->uvs) m->uvs = rt_arena_keep(arena, m->uvs, m->vertex_count * sizeof *m->uvs);
+    m->positions = rt_arena_keep(arena, m->positions, m->vertex_count * sizeof *m->positions);
+    if (m->normals) m->normals = rt_arena_keep(arena, m->normals, m->vertex_count * sizeof *m->normals);
 }
 
 rt_status rt_mesh_subdivide(const rt_mesh_desc *mesh, uint32_t levels, rt_arena *arena, rt_mesh_desc *out)

@@ -94,6 +94,7 @@ static rt_status build_objects(const rt_scene_desc *d, rt_arena *arena, rt_scene
     s->objects = RT_NEW_ARRAY(arena, rt_object, d->object_count);
     rt_mesh_desc *meshes = RT_NEW_ARRAY(arena, rt_mesh_desc, d->object_count);
     if (!s->objects || !meshes) return fail(err, RT_ERR_NOMEM, "out of memory for objects", UINT32_MAX);
+    size_t object_space = rt_arena_mark(arena); /* the meshes prepared below, until copied */
     uint64_t vertices = 0, triangles = 0;
     uint32_t quadrics = 0, with_uvs = 0;
     for (uint32_t i = 0; i < d->object_count; i++) {
@@ -127,11 +128,12 @@ static rt_status build_objects(const rt_scene_desc *d, rt_arena *arena, rt_scene
         return fail(err, RT_ERR_INVALID, "scene has too many triangles", UINT32_MAX);
     s->vertex_count = (uint32_t)vertices;
     s->triangle_count = (uint32_t)triangles;
-    s->positions = RT_NEW_ARRAY(arena, rt_vec3, s->vertex_count);
-    s->normals = RT_NEW_ARRAY(arena, rt_vec3, s->vertex_count);
+    /* Every vertex and triangle is written below: no zeroing. */
+    s->positions = rt_arena_alloc_array(arena, s->vertex_count, sizeof *s->positions);
+    s->normals = rt_arena_alloc_array(arena, s->vertex_count, sizeof *s->normals);
     /* A mesh without uvs reads uv (0, 0); when none has them the array is not kept. */
     s->uvs = with_uvs ? RT_NEW_ARRAY(arena, rt_vec2, s->vertex_count) : NULL;
-    s->triangles = RT_NEW_ARRAY(arena, rt_triangle, s->triangle_count);
+    s->triangles = rt_arena_alloc_array(arena, s->triangle_count, sizeof *s->triangles);
     s->quadric_objects = RT_NEW_ARRAY(arena, uint32_t, quadrics);
     s->mesh_object_count = d->object_count - quadrics;
     s->mesh_objects = RT_NEW_ARRAY(arena, uint32_t, s->mesh_object_count);
@@ -166,6 +168,15 @@ static rt_status build_objects(const rt_scene_desc *d, rt_arena *arena, rt_scene
         t0 += m->triangle_count;
     }
     s->prim_count = s->triangle_count + quadrics;
+    /* The object-space meshes are done with: the scene's arrays move down over them, so
+     * the BVH's scratch reuses that memory instead of adding to the peak. */
+    rt_arena_reset(arena, object_space);
+    s->positions = rt_arena_keep(arena, s->positions, s->vertex_count * sizeof *s->positions);
+    s->normals = rt_arena_keep(arena, s->normals, s->vertex_count * sizeof *s->normals);
+    if (s->uvs) s->uvs = rt_arena_keep(arena, s->uvs, s->vertex_count * sizeof *s->uvs);
+    s->triangles = rt_arena_keep(arena, s->triangles, s->triangle_count * sizeof *s->triangles);
+    s->quadric_objects = rt_arena_keep(arena, s->quadric_objects, quadrics * sizeof *s->quadric_objects);
+    s->mesh_objects = rt_arena_keep(arena, s->mesh_objects, s->mesh_object_count * sizeof *s->mesh_objects);
     return RT_OK;
 }
 
