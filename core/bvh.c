@@ -446,6 +446,7 @@ rt_status rt_bvh_build_planned(rt_scene *scene, rt_arena *arena, const rt_worker
     size_t chunks = (n - 1) / plan.chunk + 1;
     /* Every node and reference is written before it is read: no zeroing. */
     b.nodes = rt_arena_alloc(arena, (2 * (size_t)n - 1) * sizeof *b.nodes);
+    size_t past_nodes = rt_arena_mark(arena);
     b.refs = rt_arena_alloc(arena, (size_t)n * sizeof *b.refs);
     b.chunk_bounds = rt_arena_alloc(arena, chunks * sizeof *b.chunk_bounds);
     b.chunk_centroids = rt_arena_alloc(arena, chunks * sizeof *b.chunk_centroids);
@@ -456,6 +457,9 @@ rt_status rt_bvh_build_planned(rt_scene *scene, rt_arena *arena, const rt_worker
     bvh->grid = b.grid;
     bvh->extent = b.extent;
     for (uint32_t i = 0; i < n; i++) bvh->prim_refs[i] = b.refs[i].prim;
+    /* Only the binary tree is read from here on: the wide tree is made over the references
+     * and the rest of the scratch, memory already touched. */
+    rt_arena_reset(arena, past_nodes);
     rt_status st = rt_bvh_collapse(b.nodes, inner, bvh, arena);
     if (st != RT_OK) return st;
     const rt_bvh_node *wide = bvh->nodes;
