@@ -203,7 +203,7 @@ typedef struct {
     /* Per corner of the current vertex: the wedge (y, z) of triangle (v, y, z). */
     uint32_t *wy, *wz, *link;
     uint8_t *used;
-    uint32_t *ring;
+    uint32_t *ring; /* where ring_of writes */
 } ring_builder;
 
 static rt_status ring_builder_init(ring_builder *b, const uint32_t *idx, uint32_t nv, size_t corners, rt_arena *arena)
@@ -228,14 +228,7 @@ static rt_status ring_builder_init(ring_builder *b, const uint32_t *idx, uint32_
     b->wz = rt_arena_alloc_array(arena, most, sizeof *b->wz);
     b->link = rt_arena_alloc_array(arena, most, sizeof *b->link);
     b->used = rt_arena_alloc_array(arena, most, sizeof *b->used);
-    b->ring = rt_arena_alloc_array(arena, 2 * (size_t)most, sizeof *b->ring);
-    return b->wy && b->wz && b->link && b->used && b->ring ? RT_OK : RT_ERR_NOMEM;
-}
-
-/* Forgets every stamp, so the rings can be built again. */
-static void ring_builder_restart(ring_builder *b, uint32_t nv)
-{
-    for (uint32_t v = 0; v < nv; v++) b->vertex[v] = (ring_vertex){0, 0, 0, 0};
+    return b->wy && b->wz && b->link && b->used ? RT_OK : RT_ERR_NOMEM;
 }
 
 static uint32_t ring_append(ring_builder *b, uint32_t v, uint32_t k, uint32_t w)
@@ -303,33 +296,59 @@ static rt_vec3 wedge_normal(const ring_builder *b, const rt_vec3 *p, uint32_t v)
     return rt_v3_normalize(n);
 }
 
+/* Every vertex's ring, built once for the averaging and the limit: v's is
+ * all[start[v] .. start[v + 1]). */
+typedef struct {
+    size_t *start;
+    uint32_t *all;
+} ring_table;
+
+static rt_status ring_table_build(ring_builder *b, uint32_t nv, size_t corners, rt_arena *arena, ring_table *t)
+{
+    t->start = rt_arena_alloc_array(arena, (size_t)nv + 1, sizeof *t->start);
+    /* A corner's wedge adds at most two neighbours (a run's first one and its end). */
+    t->all = rt_arena_alloc_array(arena, corners, 2 * sizeof *t->all);
+    if (!t->start || !t->all) return RT_ERR_NOMEM;
+    size_t k = 0;
+    for (uint32_t v = 0; v < nv; v++) {
+        t->start[v] = k;
+        b->ring = t->all + k;
+        k += ring_of(b, v);
+    }
+    t->start[nv] = k;
+    return RT_OK;
+}
+
 /* ---- Loop subdivision: one level ---- */
 
 /* Step 2 of format.md §6.7 (from -> to), and on the last level the limit projection (to -> from)
  * and limit normals from the averaged positions. */
-static void smooth(ring_builder *b, const loop_table *w, uint32_t nv, const rt_vec3 *from, rt_vec3 *to)
+static void smooth(const ring_table *t, const loop_table *w, uint32_t nv, const rt_vec3 *from, rt_vec3 *to)
 {
     for (uint32_t v = 0; v < nv; v++) {
-        uint32_t k = ring_of(b, v);
+        const uint32_t *ring = t->all + t->start[v];
+        uint32_t k = (uint32_t)(t->start[v + 1] - t->start[v]);
         if (k == 0) {
             to[v] = from[v]; /* a vertex no triangle uses stays put */
             continue;
         }
         rt_vec3 s = rt_v3(RT_ZERO, RT_ZERO, RT_ZERO);
-        for (uint32_t i = 0; i < k; i++) s = rt_v3_add(s, from[b->ring[i]]);
+        for (uint32_t i = 0; i < k; i++) s = rt_v3_add(s, from[ring[i]]);
         rt_real kr = rt_from_int(k), beta = loop_beta(w, k);
         rt_real alpha = rt_div(rt_mul(kr, rt_sub(RT_ONE, beta)), beta);
         to[v] = rt_v3_div(rt_v3_add(rt_v3_scale(from[v], alpha), s), rt_add(alpha, kr));
     }
 }
 
-static void limit(ring_builder *b, const loop_table *w, uint32_t nv, const rt_vec3 *q, rt_vec3 *pos, rt_vec3 *normals)
+static void limit(const ring_builder *b, const ring_table *t, const loop_table *w, uint32_t nv, const rt_vec3 *q,
+                  rt_vec3 *pos, rt_vec3 *normals)
 {
     for (uint32_t v = 0; v < nv; v++) {
-        uint32_t k = ring_of(b, v);
+        const uint32_t *ring = t->all + t->start[v];
+        uint32_t k = (uint32_t)(t->start[v + 1] - t->start[v]);
         rt_vec3 s = rt_v3(RT_ZERO, RT_ZERO, RT_ZERO), t1 = s, t2 = s;
         for (uint32_t i = 0; i < k; i++) {
-            rt_vec3 n = q[b->ring[i]];
+            rt_vec3 n = q[ring[i]];
             s = rt_v3_add(s, n);
             t1 = rt_v3_add(t1, rt_v3_scale(n, loop_cos(w, i, k)));
             t2 = rt_v3_add(t2, rt_v3_scale(n, loop_cos(w, (i + k - 1) % k, k)));
@@ -374,14 +393,15 @@ static rt_status subdivide_once(const rt_mesh_desc *in, bool last, const loop_ta
      * split into the output, average into scratch, project back into the output. */
     split(in, tri_edge, last ? pos : other, uv, idx);
     ring_builder b;
+    ring_table rings;
     st = ring_builder_init(&b, idx, nv, 3 * (size_t)nt, arena);
+    if (st == RT_OK) st = ring_table_build(&b, nv, 3 * (size_t)nt, arena, &rings);
     if (st != RT_OK) return st;
     if (last) {
-        smooth(&b, w, nv, pos, other);
-        ring_builder_restart(&b, nv);
-        limit(&b, w, nv, other, pos, normals);
+        smooth(&rings, w, nv, pos, other);
+        limit(&b, &rings, w, nv, other, pos, normals);
     } else {
-        smooth(&b, w, nv, other, pos);
+        smooth(&rings, w, nv, other, pos);
     }
     *out = (rt_mesh_desc){pos, normals, uv, nv, idx, nt};
     return RT_OK;
