@@ -465,9 +465,9 @@ rt_status rt_bvh_build_planned(rt_scene *scene, rt_arena *arena, const rt_worker
     const rt_bvh_node *wide = bvh->nodes;
     rt_arena_reset(arena, mark);
     bvh->nodes = rt_arena_alloc_aligned(arena, bvh->node_count * sizeof(rt_bvh_node), 64);
-    /* Below the scratch copy, which starts past the binary tree: a forward copy never
-     * overwrites a node it has yet to read. */
-    for (uint32_t i = 0; i < bvh->node_count; i++) bvh->nodes[i] = wide[i];
+    /* Down from the scratch copy, which starts past the binary tree: for a small tree
+     * less than a node past the destination, so the two may overlap. */
+    __builtin_memmove(bvh->nodes, wide, bvh->node_count * sizeof(rt_bvh_node));
     return RT_OK;
 }
 
