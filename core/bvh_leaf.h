@@ -14,14 +14,16 @@ static bool quadric_intersect(const rt_scene *scene, uint32_t prim, const rt_ray
     const rt_object *obj = &scene->objects[scene->quadric_objects[prim - scene->triangle_count]];
     rt_vec3 o = rt_object_point(obj, rs->ray.origin);
     rt_vec3 d = rt_object_vector(obj, rs->ray.direction);
+    bool sphere = obj->kind == RT_SHAPE_SPHERE;
+    if (rt_line_clears_ball(o, d, sphere ? RT_C(0.25) : RT_C(0.5))) return false;
     /* Solve with a unit object-space direction and scale t back: the short direction of a
      * scaled-up object would leave Q32.32 only a few bits in d.d. */
     rt_real len = rt_v3_length(d);
     if (!(len > RT_ZERO)) return false;
     rt_vec3 unit = rt_v3_scale(d, rt_div(RT_ONE, len));
     rt_real t_min = rt_mul(rs->ray.t_min, len), t_max = rt_mul(rs->ray.t_max, len);
-    bool found = obj->kind == RT_SHAPE_SPHERE ? rt_intersect_sphere(o, unit, t_min, t_max, hit)
-                                              : rt_intersect_cylinder(o, unit, t_min, t_max, hit);
+    bool found =
+        sphere ? rt_intersect_sphere(o, unit, t_min, t_max, hit) : rt_intersect_cylinder(o, unit, t_min, t_max, hit);
     if (!found) return false;
     hit->t = rt_div(hit->t, len);
     return hit->t > rs->ray.t_min && hit->t < rs->ray.t_max;

@@ -26,6 +26,10 @@ typedef struct {
 bool rt_intersect_sphere(rt_vec3 origin, rt_vec3 direction, rt_real t_min, rt_real t_max, rt_prim_hit *hit);
 /* Capped cylinder: axis Y, radius 0.5, y in [-0.5, 0.5]; object space as above. */
 bool rt_intersect_cylinder(rt_vec3 origin, rt_vec3 direction, rt_real t_min, rt_real t_max, rt_prim_hit *hit);
+/* True when the line o + s d passes so far outside the ball |p|^2 <= r2 that neither
+ * test above can hit a shape inside it (r2 = 0.25 for the sphere, 0.5 for the
+ * cylinder): an early miss before their square root and divisions. False when unsure. */
+bool rt_line_clears_ball(rt_vec3 o, rt_vec3 d, rt_real r2);
 /* Slab test; returns the entry distance in *t_enter. */
 bool rt_intersect_aabb(const rt_ray_setup *rs, const rt_aabb *box, rt_real t_max, rt_real *t_enter);
 

@@ -222,3 +222,52 @@ Test(precision, a_diagonal_matrix_transforms_by_its_diagonal_alone)
             cr_assert(!memcmp(&full, &diag, sizeof full), "vector %d %d differs", i, j);
         }
 }
+
+/* The quadric test's early miss (rt_line_clears_ball): over random lines from inside
+ * the ball to past its margin, up to its range limits, it answers true only where the
+ * full test, run as bvh_leaf.h runs it (direction normalised), misses; lines past the
+ * margin are cleared. */
+Test(precision, a_cleared_line_misses_the_shape)
+{
+    uint64_t state = 0x9e3779b97f4a7c15u;
+    const rt_real t_lo = RT_C(-1.0e9), t_hi = RT_C(1.0e9);
+    int cleared = 0, trials = 200000;
+    for (int i = 0; i < trials; i++) {
+        double r[8];
+        for (int k = 0; k < 8; k++) {
+            state ^= state << 13, state ^= state >> 7, state ^= state << 17;
+            r[k] = (double)(state >> 11) * 0x1p-53;
+        }
+        bool sphere = i % 2 == 0;
+        double r2 = sphere ? 0.25 : 0.5;
+        /* A unit direction u, a unit w across it, and the line's closest point w * dist. */
+        double z = 2 * r[0] - 1, phi = 6.283185307179586 * r[1], s = sqrt(1 - z * z);
+        double u[3] = {s * cos(phi), s * sin(phi), z};
+        double a[3] = {fabs(u[0]) < 0.6 ? 1 : 0, fabs(u[0]) < 0.6 ? 0 : 1, 0};
+        double w[3] = {u[1] * a[2] - u[2] * a[1], u[2] * a[0] - u[0] * a[2], u[0] * a[1] - u[1] * a[0]};
+        double wl = sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+        bool near_margin = i % 4 < 2;
+        /* Near: from inside the ball to just past the margin (a factor sqrt(1.0625)). */
+        double dist = sqrt(r2) * (near_margin ? 0.97 + 0.07 * r[2] : 1.06 + r[2]);
+        double scale = exp2(-8 + 12 * r[3]), along = 440 * (r[4] - 0.5);
+        double o[3], d[3];
+        for (int k = 0; k < 3; k++) {
+            o[k] = w[k] / wl * dist - u[k] * along;
+            d[k] = u[k] * scale;
+        }
+        rt_vec3 ov = v3d(o[0], o[1], o[2]), dv = v3d(d[0], d[1], d[2]);
+        bool in_range = fabs(o[0]) < 255 && fabs(o[1]) < 255 && fabs(o[2]) < 255;
+        if (!rt_line_clears_ball(ov, dv, sphere ? RT_C(0.25) : RT_C(0.5))) {
+            cr_assert(near_margin || !in_range, "line %d, %.3f from the centre, not cleared", i, dist);
+            continue;
+        }
+        cleared++;
+        rt_real len = rt_v3_length(dv);
+        rt_vec3 unit = rt_v3_scale(dv, rt_div(RT_ONE, len));
+        rt_prim_hit h;
+        bool hit =
+            sphere ? rt_intersect_sphere(ov, unit, t_lo, t_hi, &h) : rt_intersect_cylinder(ov, unit, t_lo, t_hi, &h);
+        cr_assert_not(hit, "line %d, %.6f from the centre, cleared but hits", i, dist);
+    }
+    cr_assert_gt(cleared, trials / 3);
+}
