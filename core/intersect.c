@@ -132,23 +132,6 @@ bool rt_intersect_cylinder(rt_vec3 o, rt_vec3 d, rt_real t_min, rt_real t_max, r
     return found;
 }
 
-/* The line's squared distance from the origin is |o x d|^2 / |d|^2, compared with
- * r2 (1 + 1/16) without the division. In Q32.32, with |o_i| < 256 and
- * 2^-16 <= |d|^2 <= 256, |o x d|^2 comes within about 2^-21 |d| of exact and |d|^2
- * within 2^-31, so a true answer means a squared distance above r2 + 2^-7, while the
- * tests, solving with d normalised, find a hit only within about 2^-20 of the shape
- * (tests/test_precision.c tries lines on both sides of the margin; double errs far
- * less). Outside those ranges, or on NaN, it answers false and the full test runs. */
-bool rt_line_clears_ball(rt_vec3 o, rt_vec3 d, rt_real r2)
-{
-    const rt_real o_limit = RT_C(256.0);
-    if (!(rt_abs(o.x) < o_limit && rt_abs(o.y) < o_limit && rt_abs(o.z) < o_limit)) return false;
-    rt_real dd = rt_v3_dot(d, d);
-    if (!(dd >= RT_C(0x1p-16) && dd <= RT_C(256.0))) return false;
-    rt_vec3 c = rt_v3_cross(o, d);
-    return rt_v3_dot(c, c) > rt_mul(rt_mul(r2, RT_C(1.0625)), dd);
-}
-
 bool rt_intersect_aabb(const rt_ray_setup *rs, const rt_aabb *box, rt_real t_max, rt_real *t_enter)
 {
     rt_real t0 = rs->ray.t_min, t1 = t_max;
