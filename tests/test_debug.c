@@ -214,6 +214,12 @@ Test(debug, floor_box_near_the_bottom)
     cr_assert_neq(s, RT_NO_PARENT);
     cr_expect_not(pt.log.rays[s].hit);
     cr_expect_eq(pt.log.rays[s].kind, RT_RAY_SHADOW);
+    /* The Box has no specular colour: the render skips N.H there, the log still shows it
+     * (the half vector of the shadow ray's direction and the view, dotted with +Y). */
+    expect_vec(l->specular, 0, 0, 0, 0, "specular");
+    rt_vec3 h = rt_v3_normalize(rt_v3_sub(rt_v3_normalize(pt.log.rays[s].ray.direction), r->ray.direction));
+    cr_expect_float_eq(rt_to_double(l->n_dot_h), rt_to_double(h.y), 1e-6, "N.H %g", rt_to_double(l->n_dot_h));
+    cr_expect_gt(rt_to_double(l->n_dot_h), 0.5);
 }
 
 Test(debug, floor_in_the_cylinders_shadow)
