@@ -242,7 +242,11 @@ static inline rt_real bin_box_half_area(bin_box b) { return rt_aabb_half_area(b)
 
 typedef rt_vec3 centre;
 
-static inline centre box_centre(bin_box b) { return rt_v3_scale(rt_v3_add(b.lo, b.hi), RT_C(0.5)); }
+static inline centre box_centre(bin_box b)
+{
+    rt_vec3 sum = rt_v3_add(b.lo, b.hi);
+    return rt_v3(rt_half(sum.x), rt_half(sum.y), rt_half(sum.z));
+}
 
 typedef struct {
     rt_real lo[3], scale[3];

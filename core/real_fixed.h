@@ -134,6 +134,9 @@ rt_real rt_dot3_div(rt_real a0, rt_real b0, rt_real a1, rt_real b1, rt_real a2, 
 
 static inline rt_real rt_neg(rt_real a) { return a == INT64_MIN ? RT_REAL_MAX : -a; }
 
+/* rt_mul(a, RT_C(0.5)) without the product: a / 2 rounded half away from zero. */
+static inline rt_real rt_half(rt_real a) { return a / 2 + a % 2; }
+
 static inline rt_real rt_from_int(int64_t i)
 {
     if (i > INT32_MAX) return RT_REAL_MAX;

@@ -165,6 +165,18 @@ Test(real_fixed, mul_rounds_to_nearest_and_saturates)
     cr_assert_eq(rt_mul(RT_REAL_MAX, RT_REAL_MAX), RT_REAL_MAX);
 }
 
+Test(real_fixed, half_is_mul_by_one_half)
+{
+    const rt_real edges[] = {0, 1, -1, 2, -2, 3, -3, RT_REAL_MAX, -RT_REAL_MAX, INT64_MIN, RT_C(1.5), RT_C(-2.25)};
+    for (int i = 0; i < (int)(sizeof edges / sizeof edges[0]); i++)
+        cr_assert_eq(rt_half(edges[i]), rt_mul(edges[i], RT_C(0.5)), "%lld", (long long)edges[i]);
+    lcg g = {7};
+    for (int i = 0; i < 200000; i++) {
+        rt_real a = lcg_any(&g);
+        cr_assert_eq(rt_half(a), rt_mul(a, RT_C(0.5)), "%lld", (long long)a);
+    }
+}
+
 /* Where rt_mul's 64-bit rounding hands over to the 128-bit one (a high word of -2^31 or
  * 2^31 - 1 and beyond: products near +-2^95 and +-(2^95 - 2^64)), and exact ties, against
  * the exact reference. */
