@@ -11,11 +11,12 @@
 /* Raw scalars straight into the intersector: no crash, no UB, no t outside the
  * interval, and no hit on a line that passes clear of the cylinder's bounding sphere
  * by more than rounding allows, however large the numbers (long double does not
- * overflow where the kernel does). */
+ * overflow where the kernel does); and a line the BVH leaf's early miss clears misses. */
 static void raw_ray(fz_bytes *in)
 {
     rt_vec3 o = fz_vec_raw(in), d = fz_vec_raw(in);
     rt_real t_min = fz_raw(in), t_max = fz_raw(in);
+    fz_check_cleared_line(o, d, false);
     rt_prim_hit h;
     if (!rt_intersect_cylinder(o, d, t_min, t_max, &h)) return;
     fz_check_t(h.t, t_min, t_max);

@@ -4,6 +4,7 @@
 #include <math.h>
 
 #include "check.h"
+#include "intersect.h"
 
 fz_v3l fz_l(rt_vec3 v)
 {
@@ -169,4 +170,18 @@ bool fz_triangle_crossing(rt_vec3 a, rt_vec3 b, rt_vec3 c, rt_vec3 o, rt_vec3 d,
     out->slack = (1e4L * FZ_EPS * s * s + 1e4L * FZ_ABS * s) / fabsl(nd);
     out->tol_t = out->slack * s + 1e4L * FZ_EPS * fabsl(t);
     return true;
+}
+
+void fz_check_cleared_line(rt_vec3 o, rt_vec3 d, bool sphere)
+{
+    if (!rt_line_clears_ball(o, d, sphere ? RT_C(0.25) : RT_C(0.5))) return;
+    rt_real len = rt_v3_length(d);
+    FZ_CHECK(len > RT_ZERO, "a cleared line has no direction");
+    rt_vec3 unit = rt_v3_scale(d, rt_div(RT_ONE, len));
+    const rt_real far = RT_C(1e9);
+    rt_prim_hit h;
+    bool hit = sphere ? rt_intersect_sphere(o, unit, rt_neg(far), far, &h)
+                      : rt_intersect_cylinder(o, unit, rt_neg(far), far, &h);
+    FZ_CHECK(!hit, "a line cleared of the %s's ball hits it at t = %.17g", sphere ? "sphere" : "cylinder",
+             rt_to_double(h.t));
 }

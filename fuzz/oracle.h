@@ -89,6 +89,10 @@ void fz_check_t(rt_real t, rt_real t_min, rt_real t_max);
 /* n is unit length (within a backend-dependent tolerance). */
 void fz_check_unit(rt_vec3 n, const char *what);
 
+/* A line that rt_line_clears_ball clears of the sphere's (or the cylinder's) ball misses
+ * that shape as bvh_leaf.h solves it: direction normalised, over any t. */
+void fz_check_cleared_line(rt_vec3 o, rt_vec3 d, bool sphere);
+
 /* Where the line o + t d (d unit) crosses the plane of triangle abc, in long double:
  * t, the barycentric weights of b and c, and how uncertain the kernel's own values
  * may be (slack on weights, tol_t on t), which grows as the line grazes the plane. */
