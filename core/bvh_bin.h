@@ -265,12 +265,17 @@ static inline binning binning_make(rt_aabb centres)
     return g;
 }
 
-/* floor((c - lo) scale) clamped to the bins, without a branch: clamped first (rt_max
- * takes 0 over NaN), then converted. */
+/* floor(rt_mul(c - lo, scale)) clamped to the bins, from the exact product: a product
+ * not above 0 is bin 0, and for a positive one p the floor of rt_mul's rounding
+ * (p + 2^31) / 2^32 is (p + 2^31) / 2^64 (a saturated rt_mul lands in the last bin
+ * either way): one product and its top word, without rt_mul's rounding and rails. */
 static inline int centre_bin(const binning *g, centre c, int axis)
 {
-    rt_real x = rt_mul(rt_sub(rt_v3_get(c, axis), g->lo[axis]), g->scale[axis]);
-    return (int)rt_floor_nonneg(rt_min(rt_max(x, RT_ZERO), rt_from_int(BIN_COUNT - 1)));
+    rt_real x = rt_sub(rt_v3_get(c, axis), g->lo[axis]), s = g->scale[axis];
+    if (x == RT_ZERO || s == RT_ZERO || (x < RT_ZERO) != (s < RT_ZERO)) return 0;
+    uint64_t lo, hi = rt_fx_umul128(rt_fx_mag(x), rt_fx_mag(s), &lo);
+    hi += lo + (UINT64_C(1) << 31) < lo;
+    return hi < BIN_COUNT - 1 ? (int)hi : BIN_COUNT - 1;
 }
 
 static inline void box_bins(const binning *g, bin_box b, int out[3])
