@@ -162,10 +162,11 @@ rt_vec3 rt_shading_light(const rt_tracer *tr, uint32_t index, const rt_shading_p
     rec.n_dot_l = rt_v3_dot(p->n, to_light);
     /* Behind a Lambertian emitter (cosine 0) only the ambient term is left. */
     if (rec.n_dot_l > RT_ZERO && rec.light_cosine > RT_ZERO) {
-        /* The power of a cosine is finite and not negative, so a zero ks times 0 is the
-         * same bits as times the power (-0 included): the half vector, its root and the
-         * power's log and exp are spared unless ks or the debugger's log reads them. */
-        bool specular = !rt_v3_is_zero(p->ks);
+        /* The power of a cosine (at most a few ulps above 1) to a shininess below 1e15 is
+         * finite and not negative, so a zero ks times 0 is the same bits as times the power
+         * (-0 included): the half vector, its root and the power's log and exp are spared
+         * unless ks or the debugger's log reads them. */
+        bool specular = !rt_v3_is_zero(p->ks) || !(p->shininess < RT_C(1e15));
         if (specular || tr->log) {
             rt_vec3 h = rt_v3_normalize(rt_v3_add(to_light, p->v));
             rec.n_dot_h = rt_max(rt_v3_dot(p->n, h), RT_ZERO);
