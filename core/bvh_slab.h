@@ -76,23 +76,30 @@ __attribute__((always_inline)) static inline int64_t scale_bound(int64_t x, int 
 /* The number of bits of v (0 for 0). */
 static int bit_length(uint64_t v) { return v ? 64 - __builtin_clzll(v) : 0; }
 
+/* Origins up to 2^FIXED_SLAB_REACH grid units (2^(FIXED_SLAB_REACH - 31) times the
+ * scene's largest coordinate) take the integer test; beyond, the general one. */
+#define FIXED_SLAB_REACH 45
+
 static fixed_slab fixed_slab_prepare(rt_vec3 origin, rt_vec3 inv, rt_real t_min, int grid)
 {
     fixed_slab f;
     rt_real o[3] = {origin.x, origin.y, origin.z}, iv[3] = {inv.x, inv.y, inv.z};
     int64_t o_lo[3];
-    /* The bits of the largest |inv|, those of the three magnitudes or'ed. */
+    /* The bits of the largest |inv| and of the largest |o_lo|, from the magnitudes or'ed. */
     int steepest = bit_length(rt_fx_mag(iv[0]) | rt_fx_mag(iv[1]) | rt_fx_mag(iv[2]));
-    f.usable = t_min >= RT_ZERO;
+    uint64_t o_bits = 0;
     for (int k = 0; k < 3; k++) {
         o_lo[k] = floor_shift(o[k], grid);
-        if (rt_fx_mag(o_lo[k]) >= UINT64_C(1) << 32) f.usable = false;
+        o_bits |= rt_fx_mag(o_lo[k]);
     }
-    /* e = 29 - steepest leaves m 29 bits on the steepest axis. A distance is d' g inv
-     * with the grid unit g = 2^(grid - 32) and inv = inv_q 2^-32 (inv_q the Q32.32 count),
-     * so the unit is 2^(grid - 64 - e), and a Q32.32 t (t_q 2^-32) is t_q 2^(e + 32 - grid)
-     * units. */
-    int e = 29 - steepest;
+    int reach = bit_length(o_bits);
+    f.usable = t_min >= RT_ZERO && reach <= FIXED_SLAB_REACH;
+    /* |b - o_lo| < 2^(r + 1) with r = max(reach, 32), so m of 61 - r bits on the steepest
+     * axis (29 for origins within 2^32 units) keeps every product below 2^62: e = 61 - r -
+     * steepest. A distance is d' g inv with the grid unit g = 2^(grid - 32) and inv =
+     * inv_q 2^-32 (inv_q the Q32.32 count), so the unit is 2^(grid - 64 - e), and a Q32.32
+     * t (t_q 2^-32) is t_q 2^(e + 32 - grid) units. */
+    int e = 61 - (reach > 32 ? reach : 32) - steepest;
     f.to_units = e + 32 - grid;
     f.t_min_u = scale_bound(t_min, f.to_units, false);
     for (int k = 0; k < 3; k++) {
