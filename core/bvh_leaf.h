@@ -41,15 +41,30 @@ __attribute__((always_inline)) static inline bool prim_intersect(const rt_scene 
                                       scene->positions[tri->v[2]], hit, kx, ky, kz);
 }
 
+/* Whether a hit at t on prim loses to *best: farther, or as near and a higher reference. */
+static inline bool loses_to(const rt_scene_hit *best, bool found, rt_real t, uint32_t prim)
+{
+    return found && (t > best->hit.t || (t == best->hit.t && prim > best->prim));
+}
+
 /* Keeps prim's hit in *best if it is nearer, or as near and a lower reference; returns
- * whether it did. */
+ * whether it did. A triangle's barycentrics are computed only for a hit it keeps. */
 __attribute__((always_inline)) static inline bool consider(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs,
                                                            rt_scene_hit *best, bool *found, int kx, int ky, int kz)
 {
-    rt_prim_hit h;
-    if (!prim_intersect(scene, prim, rs, &h, kx, ky, kz)) return false;
-    if (*found && (h.t > best->hit.t || (h.t == best->hit.t && prim > best->prim))) return false;
-    best->hit = h;
+    if (prim < scene->triangle_count) {
+        const rt_triangle *tri = &scene->triangles[prim];
+        rt_triangle_crossing x;
+        if (!rt_triangle_cross(rs, scene->positions[tri->v[0]], scene->positions[tri->v[1]],
+                               scene->positions[tri->v[2]], &x, kx, ky, kz) ||
+            loses_to(best, *found, x.t, prim))
+            return false;
+        rt_triangle_hit(&x, &best->hit);
+    } else {
+        rt_prim_hit h;
+        if (!quadric_intersect(scene, prim, rs, &h) || loses_to(best, *found, h.t, prim)) return false;
+        best->hit = h;
+    }
     best->prim = prim;
     *found = true;
     return true;

@@ -120,7 +120,7 @@ __attribute__((always_inline)) static inline PACKET_TARGET pk_d pk_abs(pk_d a)
 
 /* The watertight test of one triangle (vertices a, b, c) for the rays in mask, each lane
  * by rt_intersect_triangle_axes's operations; every hit goes through the tie rule of
- * `consider` for its ray. Returns the lanes whose nearest hit changed. */
+ * `loses_to` for its ray. Returns the lanes whose nearest hit changed. */
 __attribute__((always_inline)) static inline PACKET_TARGET unsigned pk_triangle(const pk_packet *p, uint32_t prim,
                                                                                 const rt_vec3 *va, const rt_vec3 *vb,
                                                                                 const rt_vec3 *vc, unsigned mask,
@@ -156,7 +156,7 @@ __attribute__((always_inline)) static inline PACKET_TARGET unsigned pk_triangle(
         for (; lanes; lanes &= lanes - 1) {
             int i = __builtin_ctz(lanes), l = v * PACKET_LANES_D + i;
             rt_scene_hit *best = &out[l];
-            if (found[l] && (t[i] > best->hit.t || (t[i] == best->hit.t && prim > best->prim))) continue;
+            if (loses_to(best, found[l], t[i], prim)) continue;
             best->hit.t = t[i];
             best->hit.b1 = b1[i];
             best->hit.b2 = b2[i];

@@ -3,11 +3,18 @@
 #ifndef RT_INTERSECT_TRIANGLE_H
 #define RT_INTERSECT_TRIANGLE_H
 
-/* rt_intersect_triangle with rs's axis permutation passed as kx, ky, kz: a caller that
- * passes constants (the BVH's leaf loop, once per leaf) picks coordinates without branches. */
-__attribute__((always_inline)) static inline bool rt_intersect_triangle_axes(const rt_ray_setup *rs, rt_vec3 a,
-                                                                             rt_vec3 b, rt_vec3 c, rt_prim_hit *hit,
-                                                                             int kx, int ky, int kz)
+/* A ray's crossing of a triangle's interior, before its barycentrics: its t, and the
+ * edge functions v, w and their sum det that give them. */
+typedef struct {
+    rt_real t, v, w, det;
+} rt_triangle_crossing;
+
+/* rt_intersect_triangle up to t, with rs's axis permutation passed as kx, ky, kz: a
+ * caller that passes constants (the BVH's leaf loop, once per leaf) picks coordinates
+ * without branches. */
+__attribute__((always_inline)) static inline bool rt_triangle_cross(const rt_ray_setup *rs, rt_vec3 a, rt_vec3 b,
+                                                                    rt_vec3 c, rt_triangle_crossing *x, int kx, int ky,
+                                                                    int kz)
 {
     /* Translate to the ray origin, permute and shear so the ray runs along +z (Woop,
      * Benthin and Wald's watertight test); the 2D edge functions then decide coverage. */
@@ -38,10 +45,27 @@ __attribute__((always_inline)) static inline bool rt_intersect_triangle_axes(con
     rt_real t = rt_dot3_div(u, rt_mul(rs->sz, az), v, rt_mul(rs->sz, bz), w, rt_mul(rs->sz, cz), det);
     /* A saturated t (Q32.32) is an overflow, not a distance, whatever the interval says. */
     if (!(t > rs->ray.t_min && t < rs->ray.t_max) || !rt_is_finite(t)) return false;
-    hit->t = t;
-    hit->b1 = rt_div(v, det);
-    hit->b2 = rt_div(w, det);
+    *x = (rt_triangle_crossing){t, v, w, det};
+    return true;
+}
+
+/* The hit of a crossing. Its two divisions are left for the crossings a leaf keeps. */
+__attribute__((always_inline)) static inline void rt_triangle_hit(const rt_triangle_crossing *x, rt_prim_hit *hit)
+{
+    hit->t = x->t;
+    hit->b1 = rt_div(x->v, x->det);
+    hit->b2 = rt_div(x->w, x->det);
     hit->part = RT_PART_SURFACE;
+}
+
+/* rt_intersect_triangle with rs's axis permutation passed as kx, ky, kz. */
+__attribute__((always_inline)) static inline bool rt_intersect_triangle_axes(const rt_ray_setup *rs, rt_vec3 a,
+                                                                             rt_vec3 b, rt_vec3 c, rt_prim_hit *hit,
+                                                                             int kx, int ky, int kz)
+{
+    rt_triangle_crossing x;
+    if (!rt_triangle_cross(rs, a, b, c, &x, kx, ky, kz)) return false;
+    rt_triangle_hit(&x, hit);
     return true;
 }
 
