@@ -99,7 +99,8 @@ static fixed_slab fixed_slab_prepare(rt_vec3 origin, rt_vec3 inv, rt_real t_min,
      * steepest. A distance is d' g inv with the grid unit g = 2^(grid - 32) and inv =
      * inv_q 2^-32 (inv_q the Q32.32 count), so the unit is 2^(grid - 64 - e), and a Q32.32
      * t (t_q 2^-32) is t_q 2^(e + 32 - grid) units. */
-    int e = 61 - (reach > 32 ? reach : 32) - steepest;
+    int r = reach < 32 ? 32 : reach > FIXED_SLAB_REACH ? FIXED_SLAB_REACH : reach; /* keeps unused rays' shifts legal */
+    int e = 61 - r - steepest;
     f.to_units = e + 32 - grid;
     f.t_min_u = scale_bound(t_min, f.to_units, false);
     for (int k = 0; k < 3; k++) {
