@@ -29,16 +29,28 @@ static bool quadric_intersect(const rt_scene *scene, uint32_t prim, const rt_ray
     return hit->t > rs->ray.t_min && hit->t < rs->ray.t_max;
 }
 
+/* Triangle prim's crossing by the ray, up to t (rt_triangle_cross); kx, ky, kz are rs's
+ * axis permutation. */
+__attribute__((always_inline)) static inline bool triangle_cross(const rt_scene *scene, uint32_t prim,
+                                                                 const rt_ray_setup *rs, rt_triangle_crossing *x,
+                                                                 int kx, int ky, int kz)
+{
+    const rt_triangle *tri = &scene->triangles[prim];
+    return rt_triangle_cross(rs, scene->positions[tri->v[0]], scene->positions[tri->v[1]], scene->positions[tri->v[2]],
+                             x, kx, ky, kz);
+}
+
 /* Inline in the BVH's leaf loop, where a triangle test is most of the work; kx, ky, kz
- * are rs's axis permutation (see rt_intersect_triangle_axes). */
+ * are rs's axis permutation (see rt_triangle_cross). */
 __attribute__((always_inline)) static inline bool prim_intersect(const rt_scene *scene, uint32_t prim,
                                                                  const rt_ray_setup *rs, rt_prim_hit *hit, int kx,
                                                                  int ky, int kz)
 {
     if (prim >= scene->triangle_count) return quadric_intersect(scene, prim, rs, hit);
-    const rt_triangle *tri = &scene->triangles[prim];
-    return rt_intersect_triangle_axes(rs, scene->positions[tri->v[0]], scene->positions[tri->v[1]],
-                                      scene->positions[tri->v[2]], hit, kx, ky, kz);
+    rt_triangle_crossing x;
+    if (!triangle_cross(scene, prim, rs, &x, kx, ky, kz)) return false;
+    rt_triangle_hit(&x, hit);
+    return true;
 }
 
 /* Whether a hit at t on prim loses to *best: farther, or as near and a higher reference. */
@@ -53,12 +65,8 @@ __attribute__((always_inline)) static inline bool consider(const rt_scene *scene
                                                            rt_scene_hit *best, bool *found, int kx, int ky, int kz)
 {
     if (prim < scene->triangle_count) {
-        const rt_triangle *tri = &scene->triangles[prim];
         rt_triangle_crossing x;
-        if (!rt_triangle_cross(rs, scene->positions[tri->v[0]], scene->positions[tri->v[1]],
-                               scene->positions[tri->v[2]], &x, kx, ky, kz) ||
-            loses_to(best, *found, x.t, prim))
-            return false;
+        if (!triangle_cross(scene, prim, rs, &x, kx, ky, kz) || loses_to(best, *found, x.t, prim)) return false;
         rt_triangle_hit(&x, &best->hit);
     } else {
         rt_prim_hit h;
