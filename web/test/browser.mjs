@@ -279,8 +279,9 @@ try {
   // ---- Cancel stops the workers ----
   {
     await setOptions({ aa: 3 });
-    await page.evaluate(() => { rtkApp.lastError = ''; rtkApp.openAndRender('cse457/assets/trace/trimeshes/chess.yaml'); });
-    await page.waitForFunction(() => rtkApp.render?.done >= 1, null, { timeout: 60000 });
+    // The previous render's object stays in rtkApp.render until the scene has loaded: wait for the new one.
+    await page.evaluate(() => { window.previousRender = rtkApp.render; rtkApp.lastError = ''; rtkApp.openAndRender('cse457/assets/trace/trimeshes/chess.yaml'); });
+    await page.waitForFunction(() => rtkApp.render && rtkApp.render !== window.previousRender && rtkApp.render.done >= 1, null, { timeout: 60000 });
     const during = page.workers().length;
     await page.click('#cancel-btn');
     await page.waitForTimeout(1500);
