@@ -271,3 +271,20 @@ Test(precision, a_cleared_line_misses_the_shape)
     }
     cr_assert_gt(cleared, trials / 3);
 }
+
+/* fuzz_render: a ray nearly in a triangle's plane, passing 8 triangle widths outside it
+ * (it meets the plane at t = 0.297). In Q32.32 its edge functions and det came out 0, 1,
+ * 1 and 1 lsb, the sign test accepted, and the "hit" was at t = 0.0057, off the
+ * triangle's box: the BVH, culling by that box, did not find it and brute force did. */
+Test(precision, a_ray_nearly_in_a_triangles_plane_misses_it)
+{
+    const double q = 0x1p-32; /* the coordinates are multiples of 2^-32, exact in both builds */
+    rt_vec3 a = v3d(2921693987 * q, 8875850643 * q, 5640640963 * q);
+    rt_vec3 b = v3d(3143043230 * q, 8904232056 * q, 5462784796 * q);
+    rt_vec3 c = v3d(2880040811 * q, 8793859269 * q, 5471806110 * q);
+    rt_ray ray = {v3d(4221476255 * q, 9382297604 * q, 5493056827 * q),
+                  v3d(2079356978 * q, -511006516 * q, -3723156049 * q), rt_from_double(0.001), RT_REAL_MAX};
+    rt_ray_setup rs = rt_intersect_prepare(ray);
+    rt_prim_hit h = {0};
+    cr_assert_not(rt_intersect_triangle(&rs, a, b, c, &h), "hit at t = %.17g", rt_to_double(h.t));
+}
