@@ -41,13 +41,15 @@ __attribute__((always_inline)) static inline bool rt_triangle_cross(const rt_ray
      * noise too. Such rays miss. */
     rt_real extent_x = rt_add(rt_add(rt_abs(ax), rt_abs(bx)), rt_abs(cx));
     rt_real extent_y = rt_add(rt_add(rt_abs(ay), rt_abs(by)), rt_abs(cy));
-    if (rt_abs(det) <= rt_mul(rt_mul(extent_x, extent_y), RT_C(1e-12))) return false;
 #ifdef RT_REAL_FIXED
-    /* In Q32.32 that 1e-12 is 0, and the noise is absolute: each of the six sheared
-     * coordinates is off by up to half an lsb and each product rounds by another half,
-     * so det is off by at most (extent_x + extent_y + 3) lsb. Twice that is noise too. */
-    if (rt_abs(det) <= rt_add(rt_mul(rt_add(extent_x, extent_y), RT_C(0x1p-31)), RT_C(0x1.8p-30))) return false;
+    /* In Q32.32 the noise is absolute: each of the six sheared coordinates is off by up
+     * to half an lsb and each product rounds by another half, so det is off by at most
+     * (extent_x + extent_y + 3) lsb; twice that is noise too (1e-12 would round to 0). */
+    rt_real edge_on = rt_add(rt_mul(rt_add(extent_x, extent_y), RT_C(0x1p-31)), RT_C(0x1.8p-30));
+#else
+    rt_real edge_on = rt_mul(rt_mul(extent_x, extent_y), RT_C(1e-12));
 #endif
+    if (rt_abs(det) <= edge_on) return false;
     rt_real t = rt_dot3_div(u, rt_mul(rs->sz, az), v, rt_mul(rs->sz, bz), w, rt_mul(rs->sz, cz), det);
     /* A saturated t (Q32.32) is an overflow, not a distance, whatever the interval says. */
     if (!(t > rs->ray.t_min && t < rs->ray.t_max) || !rt_is_finite(t)) return false;
