@@ -235,13 +235,12 @@ __attribute__((always_inline)) static inline int64_t fixed_plane(const rt_bound 
     return ((int64_t)row[c] - o) * m;
 }
 
-/* All four children with fixed_slab's bounds: a superset of the exact test's hits, and
- * entry distances at or below the exact ones. */
+/* All four children with fixed_slab's bounds, against limit_u (units): a superset of the
+ * exact test's hits, and entry distances in units at or below the exact ones. */
 __attribute__((always_inline)) static inline unsigned slab_hit_fixed(const slab_ray *r, const rt_bvh_node *node,
-                                                                     rt_real t_max, rt_real t_enter[RT_BVH_WIDTH])
+                                                                     int64_t limit_u, int64_t t_enter[RT_BVH_WIDTH])
 {
     const fixed_slab *f = &r->fx;
-    int64_t limit_u = scale_bound(t_max, f->to_units, true);
     const rt_bound *nx = node->box[r->near[0]], *ny = node->box[r->near[1]], *nz = node->box[r->near[2]];
     const rt_bound *fx = node->box[r->far[0]], *fy = node->box[r->far[1]], *fz = node->box[r->far[2]];
     unsigned hits = 0;
@@ -255,26 +254,39 @@ __attribute__((always_inline)) static inline unsigned slab_hit_fixed(const slab_
         t1 = rt_min(t1, fixed_plane(fz, c, f->far_o[2], f->far_m[2]));
         if (t0 > t1) continue;
         hits |= 1u << c;
-        t_enter[c] = scale_bound(t0, -f->to_units, false);
+        t_enter[c] = t0;
     }
     return hits;
 }
 #endif
 
-/* Tests every child of `node`: bit c of the result is set when child c is entered
- * before t_max, at t_enter[c]. Unused slots never are. */
+/* The walk's measure of a distance t: t itself, or for the fixed build's integer test t
+ * in its units rounded up, so that a box whose entry in units is beyond key(t) is entered
+ * beyond t (the walk then never converts an entry back). Monotonic in t. */
+static inline rt_real slab_key(const slab_ray *r, rt_real t)
+{
+#ifdef RT_REAL_FIXED
+    if (!r->general) return scale_bound(t, r->fx.to_units, true);
+#endif
+    (void)r;
+    return t;
+}
+
+/* Tests every child of `node`: bit c of the result is set when child c may be entered
+ * before the distance whose key (slab_key) is limit, and t_enter[c] is then at most the
+ * key of its entry distance. Unused slots never are. */
 __attribute__((always_inline)) static inline unsigned slab_hit_children(const slab_ray *r, const rt_bvh_node *node,
-                                                                        rt_real t_max, rt_real t_enter[RT_BVH_WIDTH])
+                                                                        rt_real limit, rt_real t_enter[RT_BVH_WIDTH])
 {
 #if SLAB_SSE2
-    if (!r->general) return slab_hit_sse2(r, node, t_max, t_enter);
+    if (!r->general) return slab_hit_sse2(r, node, limit, t_enter);
 #endif
 #ifdef RT_REAL_FIXED
-    if (!r->general) return slab_hit_fixed(r, node, t_max, t_enter);
+    if (!r->general) return slab_hit_fixed(r, node, limit, t_enter);
 #endif
     unsigned hits = 0;
     for (int c = 0; c < RT_BVH_WIDTH; c++)
-        if (node->count[c] != RT_BVH_NO_CHILD && slab_hit(r, node, c, t_max, &t_enter[c])) hits |= 1u << c;
+        if (node->count[c] != RT_BVH_NO_CHILD && slab_hit(r, node, c, limit, &t_enter[c])) hits |= 1u << c;
     return hits;
 }
 

@@ -76,6 +76,7 @@ __attribute__((always_inline)) static inline stack_entry descend(const rt_bvh_no
 
 /* Boxes are tested against the best t itself (not below it), and a popped child is
  * skipped only when it is entered beyond the best t, so ties to a lower reference survive.
+ * Distances are compared as slab_key's keys (limit: t_max's, then the best t's).
  * With `any`, the first hit found ends the search (rt_scene_any). */
 static bool nearest_bvh(const rt_scene *scene, const rt_ray_setup *rs, bool any, rt_scene_hit *out)
 {
@@ -84,22 +85,26 @@ static bool nearest_bvh(const rt_scene *scene, const rt_ray_setup *rs, bool any,
     bool found = false;
     stack_entry stack[QUERY_STACK];
     uint32_t top = 0;
+    rt_real limit = slab_key(&sr, rs->ray.t_max);
     if (scene->prim_count == 0) return false;
-    stack[top++] = (stack_entry){0, 0, rs->ray.t_min}; /* the root node */
+    stack[top++] = (stack_entry){0, 0, slab_key(&sr, rs->ray.t_min)}; /* the root node */
     while (top > 0) {
         stack_entry e = stack[--top];
-        if (found && e.t_enter > out->hit.t) continue;
+        if (found && e.t_enter > limit) continue;
         /* Descend into the nearest child directly; the others wait on the stack. */
         while (e.count == 0) {
             const rt_bvh_node *node = &nodes[e.child];
-            rt_real limit = found ? out->hit.t : rs->ray.t_max, t[RT_BVH_WIDTH];
+            rt_real t[RT_BVH_WIDTH];
             unsigned hits = slab_hit_children(&sr, node, limit, t);
             if (!hits) break;
             RT_ASSERT(top + RT_BVH_WIDTH - 1 <= QUERY_STACK);
             e = descend(node, hits, t, stack, &top);
         }
         if (e.count == 0) continue;
-        if (visit_leaf(scene, e.child, e.count, rs, any, out, &found) && any) return true;
+        if (visit_leaf(scene, e.child, e.count, rs, any, out, &found)) {
+            if (any) return true;
+            limit = slab_key(&sr, out->hit.t);
+        }
     }
     return found;
 }
