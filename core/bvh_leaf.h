@@ -30,14 +30,14 @@ static bool quadric_intersect(const rt_scene *scene, uint32_t prim, const rt_ray
 }
 
 /* Triangle prim's crossing by the ray, up to t (rt_triangle_cross); kx, ky, kz are rs's
- * axis permutation. */
+ * axis permutation, `bounded` whether rt_triangle_unsaturated holds. */
 __attribute__((always_inline)) static inline bool triangle_cross(const rt_scene *scene, uint32_t prim,
                                                                  const rt_ray_setup *rs, rt_triangle_crossing *x,
-                                                                 int kx, int ky, int kz)
+                                                                 int kx, int ky, int kz, bool bounded)
 {
     const rt_triangle *tri = &scene->triangles[prim];
     return rt_triangle_cross(rs, scene->positions[tri->v[0]], scene->positions[tri->v[1]], scene->positions[tri->v[2]],
-                             x, kx, ky, kz);
+                             x, kx, ky, kz, bounded);
 }
 
 /* Inline in the BVH's leaf loop, where a triangle test is most of the work; kx, ky, kz
@@ -48,7 +48,7 @@ __attribute__((always_inline)) static inline bool prim_intersect(const rt_scene 
 {
     if (prim >= scene->triangle_count) return quadric_intersect(scene, prim, rs, hit);
     rt_triangle_crossing x;
-    if (!triangle_cross(scene, prim, rs, &x, kx, ky, kz)) return false;
+    if (!triangle_cross(scene, prim, rs, &x, kx, ky, kz, false)) return false;
     rt_triangle_hit(&x, hit);
     return true;
 }
@@ -60,13 +60,16 @@ static inline bool loses_to(const rt_scene_hit *best, bool found, rt_real t, uin
 }
 
 /* Keeps prim's hit in *best if it is nearer, or as near and a lower reference; returns
- * whether it did. A triangle's barycentrics are computed only for a hit it keeps. */
+ * whether it did. A triangle's barycentrics are computed only for a hit it keeps.
+ * `bounded`: as for triangle_cross. */
 __attribute__((always_inline)) static inline bool consider(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs,
-                                                           rt_scene_hit *best, bool *found, int kx, int ky, int kz)
+                                                           rt_scene_hit *best, bool *found, int kx, int ky, int kz,
+                                                           bool bounded)
 {
     if (prim < scene->triangle_count) {
         rt_triangle_crossing x;
-        if (!triangle_cross(scene, prim, rs, &x, kx, ky, kz) || loses_to(best, *found, x.t, prim)) return false;
+        if (!triangle_cross(scene, prim, rs, &x, kx, ky, kz, bounded) || loses_to(best, *found, x.t, prim))
+            return false;
         rt_triangle_hit(&x, &best->hit);
     } else {
         rt_prim_hit h;
@@ -125,7 +128,7 @@ __attribute__((always_inline)) static inline unsigned edge_pair(const rt_scene *
 
 __attribute__((always_inline)) static inline bool leaf_loop(const rt_scene *scene, uint32_t first, uint32_t count,
                                                             const rt_ray_setup *rs, bool any, rt_scene_hit *best,
-                                                            bool *found, int kx, int ky, int kz)
+                                                            bool *found, int kx, int ky, int kz, bool bounded)
 {
     const uint32_t *refs = scene->bvh.prim_refs;
     uint32_t i = first, end = first + count;
@@ -134,35 +137,48 @@ __attribute__((always_inline)) static inline bool leaf_loop(const rt_scene *scen
         unsigned maybe = 3; /* spheres and cylinders take their own test */
         if (refs[i] < scene->triangle_count && refs[i + 1] < scene->triangle_count)
             maybe = edge_pair(scene, refs + i, rs, kx, ky, kz);
-        if (maybe & 1) consider(scene, refs[i], rs, best, found, kx, ky, kz);
+        if (maybe & 1) consider(scene, refs[i], rs, best, found, kx, ky, kz, bounded);
         if (any && *found) return true;
-        if (maybe & 2) consider(scene, refs[i + 1], rs, best, found, kx, ky, kz);
+        if (maybe & 2) consider(scene, refs[i + 1], rs, best, found, kx, ky, kz, bounded);
         if (any && *found) return true;
     }
 #endif
     for (; i < end; i++) {
-        consider(scene, refs[i], rs, best, found, kx, ky, kz);
+        consider(scene, refs[i], rs, best, found, kx, ky, kz, bounded);
         if (any && *found) break;
     }
     return *found;
 }
 
+/* leaf_loop with one copy per axis permutation. */
+__attribute__((always_inline)) static inline bool leaf_permuted(const rt_scene *scene, uint32_t first, uint32_t count,
+                                                                const rt_ray_setup *rs, bool any, rt_scene_hit *best,
+                                                                bool *found, bool bounded)
+{
+    bool swapped = rs->kx != (rs->kz + 1) % 3; /* see rt_intersect_prepare */
+    switch (rs->kz * 2 + swapped) {
+    case 0: return leaf_loop(scene, first, count, rs, any, best, found, 1, 2, 0, bounded);
+    case 1: return leaf_loop(scene, first, count, rs, any, best, found, 2, 1, 0, bounded);
+    case 2: return leaf_loop(scene, first, count, rs, any, best, found, 2, 0, 1, bounded);
+    case 3: return leaf_loop(scene, first, count, rs, any, best, found, 0, 2, 1, bounded);
+    case 4: return leaf_loop(scene, first, count, rs, any, best, found, 0, 1, 2, bounded);
+    default: return leaf_loop(scene, first, count, rs, any, best, found, 1, 0, 2, bounded);
+    }
+}
+
 /* The references prim_refs[first .. first + count), out of line so that the traversal
- * loop keeps its registers, with one copy of the loop per axis permutation; with `any`,
- * stops at the first hit. Returns *found. */
+ * loop keeps its registers; with `any`, stops at the first hit. Returns *found. The fixed
+ * build has a second copy without saturation tests for the rays and scenes that cannot
+ * reach the rails (rt_triangle_unsaturated: every scene within RT_TRIANGLE_RANGE). */
 __attribute__((noinline, unused)) static bool visit_leaf(const rt_scene *scene, uint32_t first, uint32_t count,
                                                          const rt_ray_setup *rs, bool any, rt_scene_hit *best,
                                                          bool *found)
 {
-    bool swapped = rs->kx != (rs->kz + 1) % 3; /* see rt_intersect_prepare */
-    switch (rs->kz * 2 + swapped) {
-    case 0: return leaf_loop(scene, first, count, rs, any, best, found, 1, 2, 0);
-    case 1: return leaf_loop(scene, first, count, rs, any, best, found, 2, 1, 0);
-    case 2: return leaf_loop(scene, first, count, rs, any, best, found, 2, 0, 1);
-    case 3: return leaf_loop(scene, first, count, rs, any, best, found, 0, 2, 1);
-    case 4: return leaf_loop(scene, first, count, rs, any, best, found, 0, 1, 2);
-    default: return leaf_loop(scene, first, count, rs, any, best, found, 1, 0, 2);
-    }
+#ifdef RT_REAL_FIXED
+    if (rt_triangle_unsaturated(rs, scene->bvh.extent))
+        return leaf_permuted(scene, first, count, rs, any, best, found, true);
+#endif
+    return leaf_permuted(scene, first, count, rs, any, best, found, false);
 }
 
 #endif

@@ -187,7 +187,7 @@ __attribute__((always_inline)) static inline PACKET_TARGET unsigned pk_leaf_loop
         } else {
             for (unsigned m = mask; m; m &= m - 1) {
                 int l = __builtin_ctz(m);
-                if (consider(scene, prim, rs[l], &out[l], &found[l], kx, ky, kz)) got |= 1u << l;
+                if (consider(scene, prim, rs[l], &out[l], &found[l], kx, ky, kz, false)) got |= 1u << l;
             }
         }
         improved |= got;

@@ -9,38 +9,69 @@ typedef struct {
     rt_real t, v, w, det;
 } rt_triangle_crossing;
 
+/* Whether the triangle test may take its unsaturated operations (real_fixed.h) for this
+ * ray and triangles with no coordinate beyond `extent`: origin and vertices within 2^12
+ * and |sx|, |sy| <= 1 keep the relative coordinates within 2^13, the sheared ones
+ * within 2^14, each product within 2^28 and the determinant below 3 2^29, under the
+ * rails (2^31). The double build has no rails. */
+static inline bool rt_triangle_unsaturated(const rt_ray_setup *rs, rt_real extent)
+{
+    rt_real r = RT_C(4096.0);
+    rt_vec3 o = rs->ray.origin;
+    return extent <= r && rt_abs(o.x) <= r && rt_abs(o.y) <= r && rt_abs(o.z) <= r && rt_abs(rs->sx) <= RT_ONE &&
+           rt_abs(rs->sy) <= RT_ONE;
+}
+
+/* The edge functions' operations: unsaturated where rt_triangle_unsaturated holds. */
+__attribute__((always_inline)) static inline rt_real tri_add(bool bounded, rt_real a, rt_real b)
+{
+    return bounded ? rt_add_unsaturated(a, b) : rt_add(a, b);
+}
+__attribute__((always_inline)) static inline rt_real tri_sub(bool bounded, rt_real a, rt_real b)
+{
+    return bounded ? rt_sub_unsaturated(a, b) : rt_sub(a, b);
+}
+__attribute__((always_inline)) static inline rt_real tri_mul(bool bounded, rt_real a, rt_real b)
+{
+    return bounded ? rt_mul_unsaturated(a, b) : rt_mul(a, b);
+}
+__attribute__((always_inline)) static inline rt_vec3 tri_v3_sub(bool bounded, rt_vec3 a, rt_vec3 b)
+{
+    return rt_v3(tri_sub(bounded, a.x, b.x), tri_sub(bounded, a.y, b.y), tri_sub(bounded, a.z, b.z));
+}
+
 /* rt_intersect_triangle up to t, with rs's axis permutation passed as kx, ky, kz: a
  * caller that passes constants (the BVH's leaf loop, once per leaf) picks coordinates
- * without branches. */
+ * without branches. `bounded`: rt_triangle_unsaturated holds (the same result). */
 __attribute__((always_inline)) static inline bool rt_triangle_cross(const rt_ray_setup *rs, rt_vec3 a, rt_vec3 b,
                                                                     rt_vec3 c, rt_triangle_crossing *x, int kx, int ky,
-                                                                    int kz)
+                                                                    int kz, bool bounded)
 {
     /* Translate to the ray origin, permute and shear so the ray runs along +z (Woop,
      * Benthin and Wald's watertight test); the 2D edge functions then decide coverage. */
     rt_vec3 o = rs->ray.origin;
-    rt_vec3 pa = rt_v3_sub(a, o), pb = rt_v3_sub(b, o), pc = rt_v3_sub(c, o);
+    rt_vec3 pa = tri_v3_sub(bounded, a, o), pb = tri_v3_sub(bounded, b, o), pc = tri_v3_sub(bounded, c, o);
     rt_real az = rt_v3_get(pa, kz), bz = rt_v3_get(pb, kz), cz = rt_v3_get(pc, kz);
-    rt_real ax = rt_sub(rt_v3_get(pa, kx), rt_mul(rs->sx, az));
-    rt_real ay = rt_sub(rt_v3_get(pa, ky), rt_mul(rs->sy, az));
-    rt_real bx = rt_sub(rt_v3_get(pb, kx), rt_mul(rs->sx, bz));
-    rt_real by = rt_sub(rt_v3_get(pb, ky), rt_mul(rs->sy, bz));
-    rt_real cx = rt_sub(rt_v3_get(pc, kx), rt_mul(rs->sx, cz));
-    rt_real cy = rt_sub(rt_v3_get(pc, ky), rt_mul(rs->sy, cz));
-    rt_real u = rt_sub(rt_mul(cx, by), rt_mul(cy, bx));
-    rt_real v = rt_sub(rt_mul(ax, cy), rt_mul(ay, cx));
-    rt_real w = rt_sub(rt_mul(bx, ay), rt_mul(by, ax));
+    rt_real ax = tri_sub(bounded, rt_v3_get(pa, kx), tri_mul(bounded, rs->sx, az));
+    rt_real ay = tri_sub(bounded, rt_v3_get(pa, ky), tri_mul(bounded, rs->sy, az));
+    rt_real bx = tri_sub(bounded, rt_v3_get(pb, kx), tri_mul(bounded, rs->sx, bz));
+    rt_real by = tri_sub(bounded, rt_v3_get(pb, ky), tri_mul(bounded, rs->sy, bz));
+    rt_real cx = tri_sub(bounded, rt_v3_get(pc, kx), tri_mul(bounded, rs->sx, cz));
+    rt_real cy = tri_sub(bounded, rt_v3_get(pc, ky), tri_mul(bounded, rs->sy, cz));
+    rt_real u = tri_sub(bounded, tri_mul(bounded, cx, by), tri_mul(bounded, cy, bx));
+    rt_real v = tri_sub(bounded, tri_mul(bounded, ax, cy), tri_mul(bounded, ay, cx));
+    rt_real w = tri_sub(bounded, tri_mul(bounded, bx, ay), tri_mul(bounded, by, ax));
     /* Signs on both sides: outside. One branch on the combined test, not one per sign,
      * which a triangle's edges make unpredictable. */
     bool negative = (u < RT_ZERO) | (v < RT_ZERO) | (w < RT_ZERO);
     bool positive = (u > RT_ZERO) | (v > RT_ZERO) | (w > RT_ZERO);
     if (negative & positive) return false;
-    rt_real det = rt_add(rt_add(u, v), w);
+    rt_real det = tri_add(bounded, tri_add(bounded, u, v), w);
     /* A ray (nearly) in the triangle's plane sees it edge-on: u, v, w and det are then
      * rounding noise of the size of the 2D coordinates squared times 1e-16, and t would be
      * noise too. Such rays miss. */
-    rt_real extent_x = rt_add(rt_add(rt_abs(ax), rt_abs(bx)), rt_abs(cx));
-    rt_real extent_y = rt_add(rt_add(rt_abs(ay), rt_abs(by)), rt_abs(cy));
+    rt_real extent_x = tri_add(bounded, tri_add(bounded, rt_abs(ax), rt_abs(bx)), rt_abs(cx));
+    rt_real extent_y = tri_add(bounded, tri_add(bounded, rt_abs(ay), rt_abs(by)), rt_abs(cy));
 #ifdef RT_REAL_FIXED
     /* In Q32.32 the noise is absolute: each of the six sheared coordinates is off by up
      * to half an lsb and each product rounds by another half, so det is off by at most
@@ -72,7 +103,7 @@ __attribute__((always_inline)) static inline bool rt_intersect_triangle_axes(con
                                                                              int kx, int ky, int kz)
 {
     rt_triangle_crossing x;
-    if (!rt_triangle_cross(rs, a, b, c, &x, kx, ky, kz)) return false;
+    if (!rt_triangle_cross(rs, a, b, c, &x, kx, ky, kz, false)) return false;
     rt_triangle_hit(&x, hit);
     return true;
 }

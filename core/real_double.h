@@ -25,6 +25,10 @@ _Static_assert(sizeof(rt_real) == 8, "the double build needs IEEE binary64");
 static inline rt_real rt_add(rt_real a, rt_real b) { return a + b; }
 static inline rt_real rt_sub(rt_real a, rt_real b) { return a - b; }
 static inline rt_real rt_mul(rt_real a, rt_real b) { return a * b; }
+/* The fixed build's forms for bounded operands (real_fixed.h): the same operations here. */
+static inline rt_real rt_add_unsaturated(rt_real a, rt_real b) { return a + b; }
+static inline rt_real rt_sub_unsaturated(rt_real a, rt_real b) { return a - b; }
+static inline rt_real rt_mul_unsaturated(rt_real a, rt_real b) { return a * b; }
 static inline rt_real rt_div(rt_real a, rt_real b) { return a / b; }
 /* (a0 b0 + a1 b1 + a2 b2) / d, rounded step by step left to right. */
 static inline rt_real rt_dot3_div(rt_real a0, rt_real b0, rt_real a1, rt_real b1, rt_real a2, rt_real b2, rt_real d)

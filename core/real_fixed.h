@@ -86,6 +86,12 @@ static inline rt_real rt_sub(rt_real a, rt_real b)
     return r == INT64_MIN ? -RT_REAL_MAX : r;
 }
 
+/* rt_add and rt_sub (and rt_mul_unsaturated below) for a caller that has bounded the
+ * operands and the result below 2^31 in magnitude, so that nothing reaches the rails:
+ * the same values without the tests. */
+static inline rt_real rt_add_unsaturated(rt_real a, rt_real b) { return a + b; }
+static inline rt_real rt_sub_unsaturated(rt_real a, rt_real b) { return a - b; }
+
 #if defined(__SIZEOF_INT128__) && !defined(RT_FIXED_PORTABLE)
 /* The signed 128-bit product p rounded as in rt_mul and saturated: truncating (p +- 2^31) /
  * 2^32 rounds halves away from zero. */
@@ -112,11 +118,23 @@ static inline rt_real rt_mul(rt_real a, rt_real b)
     uint64_t carry = ((lo & UINT32_MAX) + (UINT64_C(1) << 31) - (hi >> 63)) >> 32;
     return rt_real_from_bits((hi << 32 | lo >> 32) + carry);
 }
+
+/* rt_mul for operands whose product the caller has bounded below 2^31 (no rails): the
+ * same value without the test. */
+static inline rt_real rt_mul_unsaturated(rt_real a, rt_real b)
+{
+    __asm__("" : "+r"(a), "+r"(b));
+    unsigned __int128 u = (unsigned __int128)((__int128)a * b);
+    uint64_t hi = (uint64_t)(u >> 64), lo = (uint64_t)u;
+    uint64_t carry = ((lo & UINT32_MAX) + (UINT64_C(1) << 31) - (hi >> 63)) >> 32;
+    return rt_real_from_bits((hi << 32 | lo >> 32) + carry);
+}
 #else
 static inline rt_real rt_mul(rt_real a, rt_real b)
 {
     return rt_fx_signed(rt_fx_umulshift(rt_fx_mag(a), rt_fx_mag(b), 32), (a < 0) != (b < 0));
 }
+static inline rt_real rt_mul_unsaturated(rt_real a, rt_real b) { return rt_mul(a, b); }
 #endif
 
 /* round(n * 2^shift / d) for 1 <= shift <= 63 and d > 0, halves up, or UINT64_MAX when that

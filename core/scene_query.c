@@ -10,7 +10,7 @@
 static bool nearest_brute(const rt_scene *scene, const rt_ray_setup *rs, rt_scene_hit *out)
 {
     bool found = false;
-    for (uint32_t p = 0; p < scene->prim_count; p++) consider(scene, p, rs, out, &found, rs->kx, rs->ky, rs->kz);
+    for (uint32_t p = 0; p < scene->prim_count; p++) consider(scene, p, rs, out, &found, rs->kx, rs->ky, rs->kz, false);
     return found;
 }
 

@@ -6,7 +6,9 @@
 #include <criterion/criterion.h>
 #include <math.h>
 
+#include "intersect.h"
 #include "real.h"
+#include "vec.h"
 
 #define LSB 0x1p-32L
 /* The bounds documented in core/real_fixed.c, in lsb (2^-32), given the exact result ref. */
@@ -202,6 +204,68 @@ Test(real_fixed, mul_matches_exact_product_near_rails_and_ties)
     cr_assert_eq(rt_mul(RT_ONE, RT_REAL_MAX - 5), RT_REAL_MAX - 5); /* a high word of 2^31 - 1 */
     cr_assert_eq(rt_mul(-RT_ONE, RT_REAL_MAX), -RT_REAL_MAX);       /* -2^31 */
     cr_assert_eq(rt_mul(RT_C(0.5), RT_REAL_MAX), INT64_C(1) << 62); /* 2^62 - 1/2 rounds up */
+}
+
+/* The unsaturated operations (for operands the caller bounds below the rails) against
+ * the saturating ones and the exact product, on operands up to 2^15.5 in magnitude (and
+ * ties). */
+Test(real_fixed, unsaturated_operations_match_within_the_rails)
+{
+    lcg g = {17};
+    for (int i = 0; i < 1000000; i++) {
+        rt_real a = lcg_real(&g, -46340.0L, 46340.0L), b = lcg_real(&g, -46340.0L, 46340.0L);
+        if (i % 4 == 0) b = (rt_real)(lcg_next(&g) % 64 * 2 + 1) << 31; /* a tie when a is odd */
+        cr_assert_eq(rt_mul_unsaturated(a, b), rt_mul(a, b), "%lld * %lld", (long long)a, (long long)b);
+#ifdef __SIZEOF_INT128__
+        cr_assert_eq(rt_mul(a, b), saturate(round_div((__int128)a * b, (__int128)1 << 32)));
+#endif
+        rt_real c = a * 16384, d = b * 16384; /* up to 2^30 */
+        cr_assert_eq(rt_add_unsaturated(c, d), rt_add(c, d));
+        cr_assert_eq(rt_sub_unsaturated(c, d), rt_sub(c, d));
+    }
+}
+
+/* rt_triangle_unsaturated's bound: within it the unsaturated triangle test gives the
+ * saturating one's crossing, at the corners of the range (vertices and origins at
+ * +-4096, the largest relative and sheared coordinates) and inside it. */
+Test(real_fixed, unsaturated_triangle_test_matches_within_its_bound)
+{
+    lcg g = {23};
+    const long double r = 4096.0L;
+    int crossings = 0;
+    for (int i = 0; i < 200000; i++) {
+        rt_vec3 p[4]; /* three vertices and the origin */
+        for (int k = 0; k < 4; k++) {
+            rt_real c[3];
+            for (int j = 0; j < 3; j++)
+                c[j] = i % 8 < 3 ? lcg_real(&g, -r, r) : (lcg_next(&g) & 1 ? RT_C(4096.0) : RT_C(-4096.0));
+            p[k] = rt_v3(c[0], c[1], c[2]);
+        }
+        /* Aim at a point of the triangle, anywhere, or along a diagonal (|sx| = |sy| = 1:
+         * with corner points, sheared coordinates up to 4 r and a determinant near 96 r^2). */
+        rt_real w0 = lcg_real(&g, 0.0L, 1.0L), w1 = lcg_real(&g, 0.0L, 1.0L);
+        rt_vec3 target = rt_v3_add(p[0], rt_v3_add(rt_v3_scale(rt_v3_sub(p[1], p[0]), rt_mul(w0, w1)),
+                                                   rt_v3_scale(rt_v3_sub(p[2], p[0]), rt_sub(w0, rt_mul(w0, w1)))));
+        rt_vec3 dir = rt_v3_sub(target, p[3]);
+        if (i % 4 == 1) dir = rt_v3(lcg_real(&g, -r, r), lcg_real(&g, -r, r), lcg_real(&g, -r, r));
+        if (i % 4 == 3)
+            dir = rt_v3(lcg_next(&g) & 1 ? RT_ONE : -RT_ONE, lcg_next(&g) & 1 ? RT_ONE : -RT_ONE,
+                        lcg_next(&g) & 1 ? RT_ONE : -RT_ONE);
+        rt_ray_setup rs = rt_intersect_prepare(rt_ray_make(p[3], dir, RT_REAL_MAX));
+        cr_assert(rt_triangle_unsaturated(&rs, RT_C(4096.0)));
+        rt_triangle_crossing a = {0}, b = {0};
+        bool hit_a = rt_triangle_cross(&rs, p[0], p[1], p[2], &a, rs.kx, rs.ky, rs.kz, true);
+        bool hit_b = rt_triangle_cross(&rs, p[0], p[1], p[2], &b, rs.kx, rs.ky, rs.kz, false);
+        cr_assert_eq(hit_a, hit_b, "case %d", i);
+        cr_assert(!hit_a || (a.t == b.t && a.v == b.v && a.w == b.w && a.det == b.det), "case %d", i);
+        crossings += hit_a;
+    }
+    cr_log_info("%d crossings", crossings);
+    cr_assert_gt(crossings, 25000); /* the aimed rays (half of them) mostly cross */
+    rt_ray_setup far = rt_intersect_prepare(
+        rt_ray_make(rt_v3(RT_C(4097.0), RT_ZERO, RT_ZERO), rt_v3(RT_ONE, RT_ZERO, RT_ZERO), RT_REAL_MAX));
+    cr_assert(!rt_triangle_unsaturated(&far, RT_C(4096.0)));
+    cr_assert(!rt_triangle_unsaturated(&far, RT_C(4096.5)));
 }
 
 Test(real_fixed, div_rounds_to_nearest_and_saturates)
