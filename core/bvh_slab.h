@@ -244,6 +244,7 @@ __attribute__((always_inline)) static inline unsigned slab_hit_fixed(const slab_
     const rt_bound *nx = node->box[r->near[0]], *ny = node->box[r->near[1]], *nz = node->box[r->near[2]];
     const rt_bound *fx = node->box[r->far[0]], *fy = node->box[r->far[1]], *fz = node->box[r->far[2]];
     unsigned hits = 0;
+#pragma GCC unroll 4
     for (int c = 0; c < RT_BVH_WIDTH; c++) {
         if (node->count[c] == RT_BVH_NO_CHILD) continue;
         int64_t t0 = rt_max(f->t_min_u, fixed_plane(nx, c, f->near_o[0], f->near_m[0]));
