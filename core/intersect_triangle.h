@@ -63,8 +63,19 @@ __attribute__((always_inline)) static inline bool rt_triangle_cross(const rt_ray
     rt_real w = tri_sub(bounded, tri_mul(bounded, bx, ay), tri_mul(bounded, by, ax));
     /* Signs on both sides: outside. One branch on the combined test, not one per sign,
      * which a triangle's edges make unpredictable. */
+#ifdef RT_REAL_FIXED
+    /* In Q32.32 the products of short sheared coordinates (a triangle seen nearly edge-on)
+     * lose their value below 2^-32 absolute, and an edge function that rounded to 0 would
+     * put a ray beyond that edge on it: the signs are taken from the exact products. u, v
+     * and w have the same signs or are 0, so the barycentrics stay in the triangle. */
+    int su = rt_fx_mul_sub_sign(cx, by, cy, bx), sv = rt_fx_mul_sub_sign(ax, cy, ay, cx);
+    int sw = rt_fx_mul_sub_sign(bx, ay, by, ax);
+    bool negative = (su < 0) | (sv < 0) | (sw < 0);
+    bool positive = (su > 0) | (sv > 0) | (sw > 0);
+#else
     bool negative = (u < RT_ZERO) | (v < RT_ZERO) | (w < RT_ZERO);
     bool positive = (u > RT_ZERO) | (v > RT_ZERO) | (w > RT_ZERO);
+#endif
     if (negative & positive) return false;
     rt_real det = tri_add(bounded, tri_add(bounded, u, v), w);
     /* A ray (nearly) in the triangle's plane sees it edge-on: u, v, w and det are then

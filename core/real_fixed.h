@@ -137,6 +137,24 @@ static inline rt_real rt_mul(rt_real a, rt_real b)
 static inline rt_real rt_mul_unsaturated(rt_real a, rt_real b) { return rt_mul(a, b); }
 #endif
 
+/* The sign (-1, 0 or 1) of a b - c d, exactly: rt_sub(rt_mul(a, b), rt_mul(c, d)) has
+ * that sign or is 0 (rounding and saturation are monotonic), and is 0 for a difference
+ * below half an lsb that is not. */
+static inline int rt_fx_mul_sub_sign(rt_real a, rt_real b, rt_real c, rt_real d)
+{
+#if defined(__SIZEOF_INT128__) && !defined(RT_FIXED_PORTABLE)
+    __int128 p = (__int128)a * b, q = (__int128)c * d;
+    return (p > q) - (p < q);
+#else
+    uint64_t p_lo, q_lo, p_hi = rt_fx_umul128(rt_fx_mag(a), rt_fx_mag(b), &p_lo);
+    uint64_t q_hi = rt_fx_umul128(rt_fx_mag(c), rt_fx_mag(d), &q_lo);
+    bool p_neg = ((a < 0) != (b < 0)) && (p_hi | p_lo), q_neg = ((c < 0) != (d < 0)) && (q_hi | q_lo);
+    if (p_neg != q_neg) return p_neg ? -1 : 1;
+    int larger = p_hi != q_hi ? (p_hi > q_hi ? 1 : -1) : p_lo != q_lo ? (p_lo > q_lo ? 1 : -1) : 0;
+    return p_neg ? -larger : larger; /* magnitudes compare the other way for two negatives */
+#endif
+}
+
 /* round(n * 2^shift / d) for 1 <= shift <= 63 and d > 0, halves up, or UINT64_MAX when that
  * is 2^63 or more. One divq on x86-64, two 64-bit divisions on aarch64, bit-serial elsewhere
  * (no libgcc helper on 32-bit targets); the same bits every way. */

@@ -288,3 +288,28 @@ Test(precision, a_ray_nearly_in_a_triangles_plane_misses_it)
     rt_prim_hit h = {0};
     cr_assert_not(rt_intersect_triangle(&rs, a, b, c, &h), "hit at t = %.17g", rt_to_double(h.t));
 }
+
+/* fuzz_plane (fixed): a ray along -y, 2.4e-5 beyond the x edge of a small square seen
+ * almost edge-on (its z spans 3e-6), met the square's plane at t = 4: in Q32.32 the
+ * edge function of the near edge, about 0.3 lsb, rounded to 0 and put the ray on the
+ * edge, so brute force found a hit that the BVH (rightly) culled. No triangle of the
+ * square's corners may be hit. */
+Test(precision, a_ray_beyond_an_edge_of_a_triangle_seen_edge_on_misses_it)
+{
+    const double q = 0x1p-32;
+    rt_vec3 v[4] = {v3d(-34493956099 * q, -34183576963 * q, -34175179745 * q),
+                    v3d(-34225520643 * q, -34183576957 * q, -34175179739 * q),
+                    v3d(-34225520637 * q, -34452012413 * q, -34175192607 * q),
+                    v3d(-34493956093 * q, -34452012419 * q, -34175192613 * q)};
+    rt_ray ray = {v3d(-34494059110 * q, -17263532288 * q, -34175192200 * q), v3d(0, -1, 0), rt_from_double(0.001),
+                  RT_REAL_MAX};
+    rt_ray_setup rs = rt_intersect_prepare(ray);
+    static const int corners[4][3] = {{0, 1, 2}, {0, 2, 3}, {0, 1, 3}, {1, 2, 3}};
+    for (int i = 0; i < 4; i++) {
+        rt_prim_hit h = {0};
+        const int *k = corners[i];
+        cr_assert_not(rt_intersect_triangle(&rs, v[k[0]], v[k[1]], v[k[2]], &h), "triangle %d hit at t = %.17g", i,
+                      rt_to_double(h.t));
+        cr_assert_not(rt_intersect_triangle(&rs, v[k[0]], v[k[2]], v[k[1]], &h), "triangle %d reversed hit", i);
+    }
+}

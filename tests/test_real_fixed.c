@@ -225,6 +225,34 @@ Test(real_fixed, unsaturated_operations_match_within_the_rails)
     }
 }
 
+/* rt_fx_mul_sub_sign against the exact 128-bit difference, on operands of every length
+ * and on equal products. */
+Test(real_fixed, mul_sub_sign_is_the_exact_sign)
+{
+#ifdef __SIZEOF_INT128__
+    lcg g = {29};
+    for (int i = 0; i < 1000000; i++) {
+        rt_real a = lcg_any(&g), b = lcg_any(&g), c = lcg_any(&g), d = lcg_any(&g);
+        if (i % 4 == 0) { /* the same product, or one lsb of a factor away */
+            c = b;
+            d = a + (rt_real)(lcg_next(&g) % 3) - 1;
+        }
+        if (i % 16 == 1) a = 0;
+        __int128 diff = (__int128)a * b - (__int128)c * d; /* below 2^127: no overflow */
+        int want = (diff > 0) - (diff < 0);
+        cr_assert_eq(rt_fx_mul_sub_sign(a, b, c, d), want, "%lld %lld %lld %lld", (long long)a, (long long)b,
+                     (long long)c, (long long)d);
+        /* The rounded difference never has the other sign. */
+        rt_real rounded = rt_sub(rt_mul(a, b), rt_mul(c, d));
+        cr_assert(want == 0 ? rounded == 0 : (rounded == 0 || (rounded > 0) == (want > 0)));
+    }
+#endif
+    cr_assert_eq(rt_fx_mul_sub_sign(103011, -413, 12455, 103017), -1); /* rounds to 0 as a difference */
+    cr_assert_eq(rt_sub(rt_mul(103011, -413), rt_mul(12455, 103017)), 0);
+    cr_assert_eq(rt_fx_mul_sub_sign(RT_REAL_MAX, RT_REAL_MAX, RT_REAL_MAX, RT_REAL_MAX - 1), 1);
+    cr_assert_eq(rt_fx_mul_sub_sign(-RT_REAL_MAX, RT_REAL_MAX, RT_REAL_MAX, -RT_REAL_MAX), 0);
+}
+
 /* rt_triangle_unsaturated's bound: within it the unsaturated triangle test gives the
  * saturating one's crossing, at the corners of the range (vertices and origins at
  * +-4096, the largest relative and sheared coordinates) and inside it. */
