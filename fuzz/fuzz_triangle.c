@@ -1,5 +1,6 @@
 /* libFuzzer target: the watertight triangle intersector (core/intersect.c) on one
- * triangle, in a one-mesh scene, against the line-plane crossing in long double. */
+ * triangle, in a one-mesh scene, against the line-plane crossing in long double; and
+ * the leaves' unsaturated test against the saturating one. */
 #include <math.h>
 
 #include "check.h"
@@ -15,6 +16,38 @@ static void raw_ray(fz_bytes *in)
     rt_ray_setup rs = rt_intersect_prepare(ray);
     rt_prim_hit h;
     if (rt_intersect_triangle(&rs, a, b, c, &h)) fz_check_t(h.t, ray.t_min, ray.t_max);
+}
+
+/* A coordinate within RT_TRIANGLE_RANGE's 4096, often at its ends. */
+static rt_real range_coordinate(fz_bytes *in)
+{
+    uint8_t pick = fz_u8(in) % 4;
+    return pick == 0 ? RT_C(4096.0) : pick == 1 ? RT_C(-4096.0) : rt_from_double(fz_range(in, -4096, 4096));
+}
+
+/* rt_triangle_unsaturated's claim: where it holds, the test without saturation (the
+ * fixed build's BVH leaves) crosses exactly where the saturating one does. Vertices and
+ * origin within the range, the direction anything (diagonals give the largest sheared
+ * coordinates). */
+static void unsaturated_agrees(fz_bytes *in)
+{
+    rt_vec3 p[4];
+    rt_real extent = RT_ZERO;
+    for (int k = 0; k < 4; k++) {
+        p[k] = rt_v3(range_coordinate(in), range_coordinate(in), range_coordinate(in));
+        if (k < 3) extent = rt_max(extent, rt_max(rt_max(rt_abs(p[k].x), rt_abs(p[k].y)), rt_abs(p[k].z)));
+    }
+    rt_vec3 d = fz_vec_raw(in);
+    if (fz_u8(in) % 2) d = rt_v3(rt_abs(d.x) == d.x ? RT_ONE : -RT_ONE, rt_abs(d.y) == d.y ? RT_ONE : -RT_ONE, RT_ONE);
+    rt_ray ray = {p[3], d, fz_raw(in), fz_raw(in)};
+    rt_ray_setup rs = rt_intersect_prepare(ray);
+    if (!rt_triangle_unsaturated(&rs, extent)) return;
+    rt_triangle_crossing a = {0}, b = {0};
+    bool hit_a = rt_triangle_cross(&rs, p[0], p[1], p[2], &a, rs.kx, rs.ky, rs.kz, true);
+    bool hit_b = rt_triangle_cross(&rs, p[0], p[1], p[2], &b, rs.kx, rs.ky, rs.kz, false);
+    FZ_CHECK(hit_a == hit_b && (!hit_a || (a.t == b.t && a.v == b.v && a.w == b.w && a.det == b.det)),
+             "unsaturated triangle test differs: %d / %d, t %.17g / %.17g", hit_a, hit_b, rt_to_double(a.t),
+             rt_to_double(b.t));
 }
 
 /* Three vertices of size ~2^-8 (2^-2 in the fixed build)..2^8 around a centre up to 64 away, sometimes on a
@@ -97,8 +130,13 @@ static rt_vec3 surface_point(fz_bytes *in, const rt_vec3 v[3], bool boundary)
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     fz_bytes in = fz_bytes_of(data, size);
-    if (fz_u8(&in) % 8 == 0) {
+    uint8_t mode = fz_u8(&in) % 8;
+    if (mode == 0) {
         raw_ray(&in);
+        return 0;
+    }
+    if (mode == 7) {
+        unsaturated_agrees(&in);
         return 0;
     }
     rt_vec3 v[3];
