@@ -9,6 +9,30 @@
 #include "bvh.h"
 #include "scene_query.h"
 
+/* Where a quadric's test starts on the ray, as a ray parameter: 0, or in the fixed build,
+ * for an origin more than 256 from the quadric's centre on some axis, the point of the ray
+ * nearest the centre. The inverse transform's entries are rounded to 2^-33, so an
+ * object-space origin's error grows with its distance; far out it exceeded the BVH's
+ * padding (finding 16 in docs/robustness.md). From the nearest point it stays within the
+ * object's size. The double build's entries are off by 2^-53 of themselves: an origin
+ * would have to be some 2^30 object sizes away. */
+static rt_real quadric_start(const rt_object *obj, const rt_ray *ray)
+{
+#ifdef RT_REAL_FIXED
+    rt_vec3 to_centre = rt_v3_sub(obj->to_world.translation, ray->origin);
+    const rt_real near = RT_C(256.0);
+    if (rt_abs(to_centre.x) <= near && rt_abs(to_centre.y) <= near && rt_abs(to_centre.z) <= near) return RT_ZERO;
+    rt_real dd = rt_v3_dot(ray->direction, ray->direction);
+    if (!(dd > RT_ZERO)) return RT_ZERO;
+    rt_real start = rt_div(rt_v3_dot(to_centre, ray->direction), dd);
+    return rt_is_finite(start) ? start : RT_ZERO;
+#else
+    (void)obj;
+    (void)ray;
+    return RT_ZERO;
+#endif
+}
+
 static bool quadric_intersect(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs, rt_prim_hit *hit)
 {
     const rt_object *obj = &scene->objects[scene->quadric_objects[prim - scene->triangle_count]];
@@ -16,16 +40,24 @@ static bool quadric_intersect(const rt_scene *scene, uint32_t prim, const rt_ray
     rt_vec3 d = rt_object_vector(obj, rs->ray.direction);
     bool sphere = obj->kind == RT_SHAPE_SPHERE;
     if (rt_line_clears_ball(o, d, sphere ? RT_C(0.25) : RT_C(0.5))) return false;
+    rt_real start = quadric_start(obj, &rs->ray), t_min = rs->ray.t_min, t_max = rs->ray.t_max;
+    if (start != RT_ZERO) {
+        o = rt_object_point(obj, rt_v3_madd(rs->ray.origin, rs->ray.direction, start));
+        t_min = rt_sub(t_min, start);
+        t_max = rt_sub(t_max, start);
+    }
     /* Solve with a unit object-space direction and scale t back: the short direction of a
      * scaled-up object would leave Q32.32 only a few bits in d.d. */
     rt_real len = rt_v3_length(d);
     if (!(len > RT_ZERO)) return false;
     rt_vec3 unit = rt_v3_scale(d, rt_div(RT_ONE, len));
-    rt_real t_min = rt_mul(rs->ray.t_min, len), t_max = rt_mul(rs->ray.t_max, len);
+    t_min = rt_mul(t_min, len);
+    t_max = rt_mul(t_max, len);
     bool found =
         sphere ? rt_intersect_sphere(o, unit, t_min, t_max, hit) : rt_intersect_cylinder(o, unit, t_min, t_max, hit);
     if (!found) return false;
     hit->t = rt_div(hit->t, len);
+    if (start != RT_ZERO) hit->t = rt_add(start, hit->t);
     return hit->t > rs->ray.t_min && hit->t < rs->ray.t_max;
 }
 
