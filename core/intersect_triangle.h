@@ -35,6 +35,25 @@ __attribute__((always_inline)) static inline rt_real tri_mul(bool bounded, rt_re
 {
     return bounded ? rt_mul_unsaturated(a, b) : rt_mul(a, b);
 }
+/* An edge function a b - c d, and in *sign a value of its sign: in Q32.32 the sign (-1, 0,
+ * 1) of the exact products, taken from the same products (a difference below half an lsb
+ * rounds to 0, and would put a ray beyond the edge on it: finding 15 in
+ * docs/robustness.md); the rounded value has that sign or is 0 (rounding and saturation
+ * are monotonic). In double the value itself. */
+__attribute__((always_inline)) static inline rt_real tri_edge_function(bool bounded, rt_real a, rt_real b, rt_real c,
+                                                                       rt_real d, rt_real *sign)
+{
+#ifdef RT_REAL_FIXED
+    int exact;
+    rt_real e = rt_fx_mul_sub(a, b, c, d, bounded, &exact);
+    *sign = exact;
+    return e;
+#else
+    rt_real e = tri_sub(bounded, tri_mul(bounded, a, b), tri_mul(bounded, c, d));
+    *sign = e;
+    return e;
+#endif
+}
 __attribute__((always_inline)) static inline rt_vec3 tri_v3_sub(bool bounded, rt_vec3 a, rt_vec3 b)
 {
     return rt_v3(tri_sub(bounded, a.x, b.x), tri_sub(bounded, a.y, b.y), tri_sub(bounded, a.z, b.z));
@@ -58,24 +77,14 @@ __attribute__((always_inline)) static inline bool rt_triangle_cross(const rt_ray
     rt_real by = tri_sub(bounded, rt_v3_get(pb, ky), tri_mul(bounded, rs->sy, bz));
     rt_real cx = tri_sub(bounded, rt_v3_get(pc, kx), tri_mul(bounded, rs->sx, cz));
     rt_real cy = tri_sub(bounded, rt_v3_get(pc, ky), tri_mul(bounded, rs->sy, cz));
-    rt_real u = tri_sub(bounded, tri_mul(bounded, cx, by), tri_mul(bounded, cy, bx));
-    rt_real v = tri_sub(bounded, tri_mul(bounded, ax, cy), tri_mul(bounded, ay, cx));
-    rt_real w = tri_sub(bounded, tri_mul(bounded, bx, ay), tri_mul(bounded, by, ax));
+    rt_real su, sv, sw;
+    rt_real u = tri_edge_function(bounded, cx, by, cy, bx, &su);
+    rt_real v = tri_edge_function(bounded, ax, cy, ay, cx, &sv);
+    rt_real w = tri_edge_function(bounded, bx, ay, by, ax, &sw);
     /* Signs on both sides: outside. One branch on the combined test, not one per sign,
      * which a triangle's edges make unpredictable. */
-#ifdef RT_REAL_FIXED
-    /* In Q32.32 the products of short sheared coordinates (a triangle seen nearly edge-on)
-     * lose their value below 2^-32 absolute, and an edge function that rounded to 0 would
-     * put a ray beyond that edge on it: the signs are taken from the exact products. u, v
-     * and w have the same signs or are 0, so the barycentrics stay in the triangle. */
-    int su = rt_fx_mul_sub_sign(cx, by, cy, bx), sv = rt_fx_mul_sub_sign(ax, cy, ay, cx);
-    int sw = rt_fx_mul_sub_sign(bx, ay, by, ax);
-    bool negative = (su < 0) | (sv < 0) | (sw < 0);
-    bool positive = (su > 0) | (sv > 0) | (sw > 0);
-#else
-    bool negative = (u < RT_ZERO) | (v < RT_ZERO) | (w < RT_ZERO);
-    bool positive = (u > RT_ZERO) | (v > RT_ZERO) | (w > RT_ZERO);
-#endif
+    bool negative = (su < RT_ZERO) | (sv < RT_ZERO) | (sw < RT_ZERO);
+    bool positive = (su > RT_ZERO) | (sv > RT_ZERO) | (sw > RT_ZERO);
     if (negative & positive) return false;
     rt_real det = tri_add(bounded, tri_add(bounded, u, v), w);
     /* A ray (nearly) in the triangle's plane sees it edge-on: u, v, w and det are then

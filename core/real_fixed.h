@@ -102,21 +102,32 @@ static inline rt_real rt_fx_mul_rails(__int128 p)
     return q > INT64_MAX ? RT_REAL_MAX : q < -INT64_MAX ? -RT_REAL_MAX : (rt_real)q;
 }
 
-/* One signed 128-bit product p, the same result as the magnitude form below. Unless its high
- * word is near the rails, the rounding is floor((p + 2^31 - [p < 0]) / 2^32): the high 64 bits
- * of p / 2^32 plus the carry out of its low 32 bits, with no branch on the sign. */
-static inline rt_real rt_mul(rt_real a, rt_real b)
+/* A signed 128-bit product p rounded to Q32.32 as rt_mul rounds it, for p / 2^32 below
+ * 2^31 in magnitude (no rails): floor((p + 2^31 - [p < 0]) / 2^32), the high 64 bits of
+ * p / 2^32 plus the carry out of its low 32 bits, with no branch on the sign. */
+__attribute__((always_inline)) static inline rt_real rt_fx_round_product(__int128 p)
 {
-    /* Opaque operands: otherwise gcc may widen an operand shared by several products once,
-     * and build each product from three multiplies instead of one imul. */
-    __asm__("" : "+r"(a), "+r"(b));
-    __int128 p = (__int128)a * b;
     unsigned __int128 u = (unsigned __int128)p;
     uint64_t hi = (uint64_t)(u >> 64), lo = (uint64_t)u;
-    /* The signed high word outside (-2^31, 2^31 - 1): the result may reach the rails. */
-    if (hi + ((UINT64_C(1) << 31) - 1) > (UINT64_C(1) << 32) - 3) return rt_fx_mul_rails(p);
     uint64_t carry = ((lo & UINT32_MAX) + (UINT64_C(1) << 31) - (hi >> 63)) >> 32;
     return rt_real_from_bits((hi << 32 | lo >> 32) + carry);
+}
+
+/* p rounded and saturated: the same result as the magnitude form below. */
+__attribute__((always_inline)) static inline rt_real rt_fx_round_product_rails(__int128 p)
+{
+    uint64_t hi = (uint64_t)((unsigned __int128)p >> 64);
+    /* The signed high word outside (-2^31, 2^31 - 1): the result may reach the rails. */
+    if (hi + ((UINT64_C(1) << 31) - 1) > (UINT64_C(1) << 32) - 3) return rt_fx_mul_rails(p);
+    return rt_fx_round_product(p);
+}
+
+/* Opaque operands (the empty asm): otherwise gcc may widen an operand shared by several
+ * products once, and build each product from three multiplies instead of one imul. */
+static inline rt_real rt_mul(rt_real a, rt_real b)
+{
+    __asm__("" : "+r"(a), "+r"(b));
+    return rt_fx_round_product_rails((__int128)a * b);
 }
 
 /* rt_mul for operands whose product the caller has bounded below 2^31 (no rails): the
@@ -124,10 +135,19 @@ static inline rt_real rt_mul(rt_real a, rt_real b)
 static inline rt_real rt_mul_unsaturated(rt_real a, rt_real b)
 {
     __asm__("" : "+r"(a), "+r"(b));
-    unsigned __int128 u = (unsigned __int128)((__int128)a * b);
-    uint64_t hi = (uint64_t)(u >> 64), lo = (uint64_t)u;
-    uint64_t carry = ((lo & UINT32_MAX) + (UINT64_C(1) << 31) - (hi >> 63)) >> 32;
-    return rt_real_from_bits((hi << 32 | lo >> 32) + carry);
+    return rt_fx_round_product((__int128)a * b);
+}
+
+/* rt_sub(rt_mul(a, b), rt_mul(c, d)), or its unsaturated form when the caller has bounded
+ * every value below 2^31, and in *sign that of the exact a b - c d: one pair of products. */
+__attribute__((always_inline)) static inline rt_real rt_fx_mul_sub(rt_real a, rt_real b, rt_real c, rt_real d,
+                                                                   bool bounded, int *sign)
+{
+    __asm__("" : "+r"(a), "+r"(b), "+r"(c), "+r"(d));
+    __int128 p = (__int128)a * b, q = (__int128)c * d;
+    *sign = (p > q) - (p < q);
+    if (bounded) return rt_sub_unsaturated(rt_fx_round_product(p), rt_fx_round_product(q));
+    return rt_sub(rt_fx_round_product_rails(p), rt_fx_round_product_rails(q));
 }
 #else
 static inline rt_real rt_mul(rt_real a, rt_real b)
@@ -154,6 +174,17 @@ static inline int rt_fx_mul_sub_sign(rt_real a, rt_real b, rt_real c, rt_real d)
     return p_neg ? -larger : larger; /* magnitudes compare the other way for two negatives */
 #endif
 }
+
+#if !defined(__SIZEOF_INT128__) || defined(RT_FIXED_PORTABLE)
+/* rt_fx_mul_sub's portable form: the same values from the magnitude products. */
+__attribute__((always_inline)) static inline rt_real rt_fx_mul_sub(rt_real a, rt_real b, rt_real c, rt_real d,
+                                                                   bool bounded, int *sign)
+{
+    (void)bounded; /* rt_mul_unsaturated is rt_mul here */
+    *sign = rt_fx_mul_sub_sign(a, b, c, d);
+    return rt_sub(rt_mul(a, b), rt_mul(c, d));
+}
+#endif
 
 /* round(n * 2^shift / d) for 1 <= shift <= 63 and d > 0, halves up, or UINT64_MAX when that
  * is 2^63 or more. One divq on x86-64, two 64-bit divisions on aarch64, bit-serial elsewhere

@@ -253,6 +253,34 @@ Test(real_fixed, mul_sub_sign_is_the_exact_sign)
     cr_assert_eq(rt_fx_mul_sub_sign(-RT_REAL_MAX, RT_REAL_MAX, RT_REAL_MAX, -RT_REAL_MAX), 0);
 }
 
+/* rt_fx_mul_sub, the triangle test's edge function: the rounded difference of the two
+ * products and the exact sign, as rt_sub of two rt_mul and rt_fx_mul_sub_sign give them;
+ * unsaturated for operands up to 2^15 (products and difference below 2^31). */
+Test(real_fixed, mul_sub_is_two_rounded_products_and_the_exact_sign)
+{
+    lcg g = {31};
+    for (int i = 0; i < 1000000; i++) {
+        bool bounded = i % 2;
+        rt_real a, b, c, d;
+        if (bounded) {
+            a = lcg_real(&g, -32767.0L, 32767.0L), b = lcg_real(&g, -32767.0L, 32767.0L);
+            c = lcg_real(&g, -32767.0L, 32767.0L), d = lcg_real(&g, -32767.0L, 32767.0L);
+        } else {
+            a = lcg_any(&g), b = lcg_any(&g), c = lcg_any(&g), d = lcg_any(&g);
+        }
+        if (i % 8 < 2) { /* the same product, or one lsb of a factor away */
+            c = b;
+            d = a + (rt_real)(lcg_next(&g) % 3) - 1;
+        }
+        if (i % 16 == 5) b = (rt_real)(lcg_next(&g) % 64 * 2 + 1) << 31; /* a rounding tie */
+        int sign = 2;
+        rt_real got = rt_fx_mul_sub(a, b, c, d, bounded, &sign);
+        cr_assert_eq(got, rt_sub(rt_mul(a, b), rt_mul(c, d)), "%lld %lld %lld %lld", (long long)a, (long long)b,
+                     (long long)c, (long long)d);
+        cr_assert_eq(sign, rt_fx_mul_sub_sign(a, b, c, d));
+    }
+}
+
 /* rt_triangle_unsaturated's bound: within it the unsaturated triangle test gives the
  * saturating one's crossing, at the corners of the range (vertices and origins at
  * +-4096, the largest relative and sheared coordinates) and inside it. */
