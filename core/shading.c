@@ -69,8 +69,8 @@ static rt_vec3 shadow_attenuation(const rt_tracer *tr, rt_vec3 point, rt_vec3 to
     }
     rt_vec3 origin = point;
     rt_real remaining = distance;
-    /* Each crossing moves the origin forward by at least the hit epsilon; the bound
-     * only guards against pathological scenes. */
+    /* Each crossing moves the origin forward by at least the hit epsilon, or it stops
+     * below; the bound only guards against pathological scenes. */
     for (uint32_t crossing = 0; crossing < 1u << 16; crossing++) {
         rt_ray ray = rt_ray_make(origin, to_light, remaining);
         uint32_t id = rt_raylog_begin(tr->log, RT_RAY_SHADOW, parent, depth, &ray);
@@ -92,6 +92,10 @@ static rt_vec3 shadow_attenuation(const rt_tracer *tr, rt_vec3 point, rt_vec3 to
         rt_raylog_color(tr->log, id, atten);
         if (rec) rec->transmittance = kt;
         if (rt_v3_is_zero(atten)) return atten;
+        /* A hit point that rounds to the origin (coordinates like 1e120, where t = 0.5 is
+         * below their rounding) would be found again at every crossing, 65,536 times:
+         * the ray cannot get past it, so it counts as blocked. */
+        if (s.point.x == origin.x && s.point.y == origin.y && s.point.z == origin.z) break;
         origin = s.point;
         if (remaining != RT_REAL_MAX) remaining = rt_sub(remaining, hit.hit.t);
     }
