@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "arena.h"
+#include "bvh.h"
 #include "intersect.h"
 #include "scene_query.h"
 #include "surface.h"
@@ -315,64 +316,73 @@ Test(precision, a_ray_beyond_an_edge_of_a_triangle_seen_edge_on_misses_it)
     }
 }
 
-/* fuzz_bvh (fixed, open finding 16 until now): two spheres of radius about 583 seen from
- * 8,450 away. The inverse transform's entries are rounded (2^-33 in Q32.32), so the
- * object-space image of so far an origin was off by about 1e-3 world units, beyond the
- * 2^-20 padding of the sphere's box (5.6e-4): the walk culled a box its sphere's hit lay
- * before. The test now starts from the ray's point nearest the centre. Each hit must lie
- * within half the padding of the exact one: measured 0.28 of it in the fixed build (21.5
- * before the fix), 1.8e-8 in the double build. */
+/* fuzz_bvh (fixed, finding 16): two spheres of radius about 583 seen from 8,450 away.
+ * The inverse transform's entries are rounded (2^-33 in Q32.32), so the object-space
+ * image of so far an origin was off by about 1e-3 world units, beyond the 2^-20 padding
+ * of the sphere's box (5.6e-4): the walk culled a box its sphere's hit lay before. The
+ * test now starts from the ray's point nearest the centre, and the fixed build pads a
+ * large quadric's box by more (the error left grows as the scale squared). Each hit
+ * must lie within half its box's padding of the exact one, for scales to 65,000:
+ * measured at most 0.15 of it in the fixed build (21.5 before the fix at a scale of
+ * 1166, 75 at 65,000 with the shift alone), 2.6e-8 in the double build. */
 Test(precision, a_far_large_sphere_is_hit_within_its_boxs_padding)
 {
-    static char memory[1 << 20];
-    rt_arena arena;
-    rt_arena_init(&arena, memory, sizeof memory);
-    static rt_material material;
-    material.index_of_refraction = RT_ONE;
-    material.diffuse.texture = material.specular.texture = RT_NO_TEXTURE;
-    material.emissive.texture = material.transmittance.texture = RT_NO_TEXTURE;
-    rt_object_desc sphere = {0};
-    sphere.kind = RT_SHAPE_SPHERE;
-    sphere.world = rt_affine_trs(v3d(123.25, -40.5, 77), v3d(0, 0, 0), v3d(1166.37, 1166.37, 1166.37));
-    rt_scene_desc desc = {0};
-    desc.materials = &material;
-    desc.material_count = 1;
-    desc.objects = &sphere;
-    desc.object_count = 1;
-    desc.camera.world = rt_affine_identity();
-    desc.camera.fov_degrees = RT_C(50.0);
-    desc.camera.width = desc.camera.height = 8;
-    rt_scene scene;
-    rt_build_error err;
-    cr_assert_eq(rt_scene_build(&desc, &arena, NULL, &scene, &err), RT_OK, "%s", err.what);
-    const rt_affine *w = &scene.objects[scene.quadric_objects[0]].to_world;
-    long double c[3] = {rt_to_double(w->translation.x), rt_to_double(w->translation.y), rt_to_double(w->translation.z)};
-    long double r = rt_to_double(w->linear.m[0][0]) / 2, padding = 0x1p-20L * (123.25L + r + 1);
-    unsigned seed = 7;
-    for (int i = 0; i < 2000; i++) {
-        double u[6];
-        for (int k = 0; k < 6; k++) u[k] = (seed = seed * 1103515245u + 12345u) / 4294967296.0 * 2 - 1;
-        /* From 5,000 to 20,000 away, aimed within 0.95 r of the centre. */
-        rt_vec3 target = v3d(123.25 + 0.55 * 1166.37 * u[0], -40.5 + 0.55 * 1166.37 * u[1], 77 + 0.55 * 1166.37 * u[2]);
-        rt_vec3 away = rt_v3_normalize(v3d(u[3], u[4], u[5] + 2));
-        rt_vec3 origin = rt_v3_add(target, rt_v3_scale(away, rt_from_double(5000 + 7500 * (u[0] + 1))));
-        rt_ray ray = {origin, rt_v3_neg(away), rt_from_double(0.001), RT_REAL_MAX};
-        long double o[3] = {rt_to_double(origin.x), rt_to_double(origin.y), rt_to_double(origin.z)};
-        long double d[3] = {rt_to_double(ray.direction.x), rt_to_double(ray.direction.y),
-                            rt_to_double(ray.direction.z)};
-        long double a = 0, h = 0, f = 0;
-        for (int k = 0; k < 3; k++) {
-            a += d[k] * d[k];
-            h += (o[k] - c[k]) * d[k];
-            f += (o[k] - c[k]) * (o[k] - c[k]);
+    static const double scales[] = {1166.37, 4100.3, 16411.7, 65000.9};
+    for (int n = 0; n < 4; n++) {
+        double scale = scales[n];
+        static char memory[1 << 20];
+        rt_arena arena;
+        rt_arena_init(&arena, memory, sizeof memory);
+        static rt_material material;
+        material.index_of_refraction = RT_ONE;
+        material.diffuse.texture = material.specular.texture = RT_NO_TEXTURE;
+        material.emissive.texture = material.transmittance.texture = RT_NO_TEXTURE;
+        rt_object_desc sphere = {0};
+        sphere.kind = RT_SHAPE_SPHERE;
+        sphere.world = rt_affine_trs(v3d(123.25, -40.5, 77), v3d(0, 0, 0), v3d(scale, scale, scale));
+        rt_scene_desc desc = {0};
+        desc.materials = &material;
+        desc.material_count = 1;
+        desc.objects = &sphere;
+        desc.object_count = 1;
+        desc.camera.world = rt_affine_identity();
+        desc.camera.fov_degrees = RT_C(50.0);
+        desc.camera.width = desc.camera.height = 8;
+        rt_scene scene;
+        rt_build_error err;
+        cr_assert_eq(rt_scene_build(&desc, &arena, NULL, &scene, &err), RT_OK, "%s", err.what);
+        const rt_affine *w = &scene.objects[scene.quadric_objects[0]].to_world;
+        long double c[3] = {rt_to_double(w->translation.x), rt_to_double(w->translation.y),
+                            rt_to_double(w->translation.z)};
+        long double r = rt_to_double(w->linear.m[0][0]) / 2;
+        long double padding = rt_to_double(rt_bvh_prim_bounds(&scene, 0).hi.x) - (c[0] + r);
+        unsigned seed = 7;
+        for (int i = 0; i < 2000; i++) {
+            double u[6];
+            for (int k = 0; k < 6; k++) u[k] = (seed = seed * 1103515245u + 12345u) / 4294967296.0 * 2 - 1;
+            /* From 4 to 17 scales away, aimed within 0.95 r of the centre. */
+            rt_vec3 target = v3d(c[0] + 0.55 * scale * u[0], c[1] + 0.55 * scale * u[1], c[2] + 0.55 * scale * u[2]);
+            rt_vec3 away = rt_v3_normalize(v3d(u[3], u[4], u[5] + 2));
+            rt_vec3 origin = rt_v3_add(target, rt_v3_scale(away, rt_from_double(scale * (4 + 6.5 * (u[0] + 1)))));
+            rt_ray ray = {origin, rt_v3_neg(away), rt_from_double(0.001), RT_REAL_MAX};
+            long double o[3] = {rt_to_double(origin.x), rt_to_double(origin.y), rt_to_double(origin.z)};
+            long double d[3] = {rt_to_double(ray.direction.x), rt_to_double(ray.direction.y),
+                                rt_to_double(ray.direction.z)};
+            long double a = 0, h = 0, f = 0;
+            for (int k = 0; k < 3; k++) {
+                a += d[k] * d[k];
+                h += (o[k] - c[k]) * d[k];
+                f += (o[k] - c[k]) * (o[k] - c[k]);
+            }
+            long double disc = h * h - a * (f - r * r);
+            rt_ray_setup rs = rt_intersect_prepare(ray);
+            rt_scene_hit hit;
+            bool found = rt_scene_nearest(&scene, &rs, false, &hit);
+            if (disc < 0.01L * r * r) continue; /* near grazing: hit or miss may go either way */
+            cr_assert(found, "scale %g, ray %d missed", scale, i);
+            long double t = (-h - sqrtl(disc)) / a, off = fabsl(rt_to_double(hit.hit.t) - t) * sqrtl(a);
+            cr_assert(off <= padding / 2, "scale %g, ray %d: hit %.3Lg from the exact one, padding %.3Lg", scale, i,
+                      off, padding);
         }
-        long double disc = h * h - a * (f - r * r);
-        rt_ray_setup rs = rt_intersect_prepare(ray);
-        rt_scene_hit hit;
-        bool found = rt_scene_nearest(&scene, &rs, false, &hit);
-        if (disc < 0.01L * r * r) continue; /* near grazing: hit or miss may go either way */
-        cr_assert(found, "ray %d missed", i);
-        long double t = (-h - sqrtl(disc)) / a, off = fabsl(rt_to_double(hit.hit.t) - t) * sqrtl(a);
-        cr_assert(off <= padding / 2, "ray %d: hit %.3Lg from the exact one, padding %.3Lg", i, off, padding);
     }
 }
