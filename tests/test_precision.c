@@ -152,6 +152,32 @@ Test(precision, bounds_round_outwards_by_at_most_one_step)
     }
 }
 
+/* Builds the scene of one object (with its mesh, or none) in a plain material, in
+ * `size` bytes at `memory`. */
+static void build_one_object(const rt_object_desc *obj, const rt_mesh_desc *mesh, void *memory, size_t size,
+                             rt_scene *scene)
+{
+    static const rt_material material = {.diffuse = {.texture = RT_NO_TEXTURE},
+                                         .specular = {.texture = RT_NO_TEXTURE},
+                                         .emissive = {.texture = RT_NO_TEXTURE},
+                                         .transmittance = {.texture = RT_NO_TEXTURE},
+                                         .index_of_refraction = RT_ONE};
+    rt_scene_desc d = {0};
+    d.materials = &material;
+    d.material_count = 1;
+    d.meshes = mesh;
+    d.mesh_count = mesh ? 1 : 0;
+    d.objects = obj;
+    d.object_count = 1;
+    d.camera.world = rt_affine_identity();
+    d.camera.fov_degrees = RT_C(50.0);
+    d.camera.width = d.camera.height = 4;
+    rt_arena arena;
+    rt_arena_init(&arena, memory, size);
+    rt_build_error err;
+    cr_assert_eq(rt_scene_build(&d, &arena, NULL, scene, &err), RT_OK, "%s", err.what);
+}
+
 /* fuzz_triangle (CI, fixed build): a sliver 2e-3 by 7.6e-6 whose cross product, 5.8e-11
  * in y, rounds to 0 in Q32.32, so the smooth normals and the geometric normal were all
  * zero. The geometric normal now takes the cross product of the edges scaled by powers
@@ -162,29 +188,11 @@ Test(precision, a_slivers_normals_are_unit_length)
     rt_vec3 pos[3] = {v3d(0.25, 0.25, 0.25), v3d(0.24999237060546875, 0.25, 0.24804684519767761),
                       v3d(0.25, 0.25, 0.24999237060546875)};
     rt_mesh_desc mesh = {pos, NULL, NULL, 3, idx, 1};
-    rt_material material = {.diffuse = {.texture = RT_NO_TEXTURE},
-                            .specular = {.texture = RT_NO_TEXTURE},
-                            .emissive = {.texture = RT_NO_TEXTURE},
-                            .transmittance = {.texture = RT_NO_TEXTURE},
-                            .index_of_refraction = RT_ONE};
     rt_object_desc obj = {.kind = RT_SHAPE_MESH, .world = rt_affine_identity()};
-    rt_scene_desc d = {0};
-    d.materials = &material;
-    d.material_count = 1;
-    d.meshes = &mesh;
-    d.mesh_count = 1;
-    d.objects = &obj;
-    d.object_count = 1;
-    d.camera.world = rt_affine_identity();
-    d.camera.fov_degrees = RT_C(50.0);
-    d.camera.width = d.camera.height = 4;
     size_t size = 1 << 20;
     void *memory = malloc(size);
-    rt_arena arena;
-    rt_arena_init(&arena, memory, size);
     rt_scene scene;
-    rt_build_error err;
-    cr_assert_eq(rt_scene_build(&d, &arena, NULL, &scene, &err), RT_OK, "%s", err.what);
+    build_one_object(&obj, &mesh, memory, size, &scene);
     rt_ray ray = {v3d(0.2499, 1.0, 0.2495), v3d(0, -1, 0), RT_HIT_EPSILON, RT_REAL_MAX};
     rt_scene_hit hit = {0};
     hit.prim = 0;
@@ -328,29 +336,13 @@ Test(precision, a_ray_beyond_an_edge_of_a_triangle_seen_edge_on_misses_it)
 Test(precision, a_far_large_sphere_is_hit_within_its_boxs_padding)
 {
     static const double scales[] = {1166.37, 4100.3, 16411.7, 65000.9};
+    static char memory[1 << 20];
     for (int n = 0; n < 4; n++) {
         double scale = scales[n];
-        static char memory[1 << 20];
-        rt_arena arena;
-        rt_arena_init(&arena, memory, sizeof memory);
-        static rt_material material;
-        material.index_of_refraction = RT_ONE;
-        material.diffuse.texture = material.specular.texture = RT_NO_TEXTURE;
-        material.emissive.texture = material.transmittance.texture = RT_NO_TEXTURE;
-        rt_object_desc sphere = {0};
-        sphere.kind = RT_SHAPE_SPHERE;
+        rt_object_desc sphere = {.kind = RT_SHAPE_SPHERE};
         sphere.world = rt_affine_trs(v3d(123.25, -40.5, 77), v3d(0, 0, 0), v3d(scale, scale, scale));
-        rt_scene_desc desc = {0};
-        desc.materials = &material;
-        desc.material_count = 1;
-        desc.objects = &sphere;
-        desc.object_count = 1;
-        desc.camera.world = rt_affine_identity();
-        desc.camera.fov_degrees = RT_C(50.0);
-        desc.camera.width = desc.camera.height = 8;
         rt_scene scene;
-        rt_build_error err;
-        cr_assert_eq(rt_scene_build(&desc, &arena, NULL, &scene, &err), RT_OK, "%s", err.what);
+        build_one_object(&sphere, NULL, memory, sizeof memory, &scene);
         const rt_affine *w = &scene.objects[scene.quadric_objects[0]].to_world;
         long double c[3] = {rt_to_double(w->translation.x), rt_to_double(w->translation.y),
                             rt_to_double(w->translation.z)};
