@@ -37,6 +37,9 @@ static inline rt_real rt_dot3_div(rt_real a0, rt_real b0, rt_real a1, rt_real b1
 }
 static inline rt_real rt_neg(rt_real a) { return -a; }
 static inline rt_real rt_half(rt_real a) { return a * 0.5; }
+/* rt_mul(a, 16) and rt_mul(a, 1/16). */
+static inline rt_real rt_times16(rt_real a) { return a * 16.0; }
+static inline rt_real rt_over16(rt_real a) { return a * 0.0625; }
 static inline rt_real rt_from_int(int64_t i) { return (rt_real)i; }
 static inline rt_real rt_sqrt(rt_real a) { return a > 0.0 ? __builtin_sqrt(a) : 0.0; }
 /* sqrt(a * b); 0 when the product is not positive. */

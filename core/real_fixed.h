@@ -202,6 +202,14 @@ static inline rt_real rt_neg(rt_real a) { return a == INT64_MIN ? RT_REAL_MAX : 
 
 /* rt_mul(a, RT_C(0.5)) without the product: a / 2 rounded half away from zero. */
 static inline rt_real rt_half(rt_real a) { return a / 2 + a % 2; }
+/* rt_mul(a, 16), exact or on the rails, and rt_mul(a, 1/16), halves away from zero,
+ * without a multiply. */
+static inline rt_real rt_times16(rt_real a)
+{
+    const rt_real most = RT_REAL_MAX / 16;
+    return a > most ? RT_REAL_MAX : a < -most ? -RT_REAL_MAX : a * 16;
+}
+static inline rt_real rt_over16(rt_real a) { return a / 16 + (a % 16 >= 8) - (a % 16 <= -8); }
 
 static inline rt_real rt_from_int(int64_t i)
 {

@@ -62,15 +62,15 @@ static inline rt_vec3 rt_v3_cross(rt_vec3 a, rt_vec3 b)
 static inline int rt_pow16_exponent(rt_real m, rt_real top)
 {
     int k = 0;
-    for (; m >= top && rt_sub(m, m) == RT_ZERO; m = rt_mul(m, RT_C(0.0625))) k--;
-    for (; m > RT_ZERO && m < RT_C(0.5); m = rt_mul(m, RT_C(16.0))) k++;
+    for (; m >= top && rt_sub(m, m) == RT_ZERO; m = rt_over16(m)) k--;
+    for (; m > RT_ZERO && m < RT_C(0.5); m = rt_times16(m)) k++;
     return k;
 }
 /* x 16^k, one factor of 16 (or 1/16) at a time. */
 static inline rt_real rt_scale_pow16(rt_real x, int k)
 {
-    for (; k > 0; k--) x = rt_mul(x, RT_C(16.0));
-    for (; k < 0; k++) x = rt_mul(x, RT_C(0.0625));
+    for (; k > 0; k--) x = rt_times16(x);
+    for (; k < 0; k++) x = rt_over16(x);
     return x;
 }
 /* a 16^k with its largest component in [1/2, 8): in Q32.32 its squared length keeps at

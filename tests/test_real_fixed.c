@@ -603,4 +603,19 @@ Test(real_fixed, trig_exact_symmetry)
     }
 }
 
+/* rt_times16 and rt_over16 against rt_mul by 16 and 1/16: ties, the rails and around them. */
+Test(real_fixed, times16_and_over16_are_rt_mul)
+{
+    lcg g = {37};
+    const rt_real most = RT_REAL_MAX / 16;
+    const rt_real edge[] = {0, 1, -1, 7, 8, 9, -7, -8, -9, 24, -24, most, most + 1, -most, -most - 1, RT_REAL_MAX};
+    for (int i = 0; i < 1000000; i++) {
+        rt_real a = i < (int)(sizeof edge / sizeof *edge) ? edge[i] : lcg_any(&g);
+        cr_assert_eq(rt_times16(a), rt_mul(a, RT_C(16.0)), "%lld", (long long)a);
+        cr_assert_eq(rt_over16(a), rt_mul(a, RT_C(0.0625)), "%lld", (long long)a);
+        cr_assert_eq(rt_times16(-a), rt_mul(-a, RT_C(16.0)), "%lld", (long long)-a);
+        cr_assert_eq(rt_over16(-a), rt_mul(-a, RT_C(0.0625)), "%lld", (long long)-a);
+    }
+}
+
 #endif
