@@ -103,13 +103,14 @@ static inline rt_real rt_fx_mul_rails(__int128 p)
 }
 
 /* A signed 128-bit product p rounded to Q32.32 as rt_mul rounds it, for p / 2^32 below
- * 2^31 in magnitude (no rails): floor((p + 2^31 - [p < 0]) / 2^32), with no branch on
- * the sign (an add with carry and a double shift on x86-64). */
+ * 2^31 in magnitude (no rails): floor((p + 2^31 - [p < 0]) / 2^32), the high 64 bits of
+ * p / 2^32 plus the carry out of its low 32 bits, with no branch on the sign. */
 __attribute__((always_inline)) static inline rt_real rt_fx_round_product(__int128 p)
 {
-    uint64_t negative = (uint64_t)((unsigned __int128)p >> 127);
-    unsigned __int128 u = (unsigned __int128)p + ((UINT64_C(1) << 31) - negative);
-    return rt_real_from_bits((uint64_t)(u >> 32));
+    unsigned __int128 u = (unsigned __int128)p;
+    uint64_t hi = (uint64_t)(u >> 64), lo = (uint64_t)u;
+    uint64_t carry = ((lo & UINT32_MAX) + (UINT64_C(1) << 31) - (hi >> 63)) >> 32;
+    return rt_real_from_bits((hi << 32 | lo >> 32) + carry);
 }
 
 /* p rounded and saturated: the same result as the magnitude form below. */
