@@ -87,15 +87,23 @@ static rt_vec3 shadow_attenuation(const rt_tracer *tr, rt_vec3 point, rt_vec3 to
         rt_vec3 kt = mode == RT_SHADOWS_OPAQUE
                          ? rt_v3(RT_ZERO, RT_ZERO, RT_ZERO)
                          : rt_surface_channel(scene, &scene->materials[s.material].transmittance, s.uv);
+        rt_vec3 before = atten;
         atten = rt_v3_mul(atten, kt);
         rt_raylog_hit(tr->log, id, &hit, &s);
         rt_raylog_color(tr->log, id, atten);
         if (rec) rec->transmittance = kt;
         if (rt_v3_is_zero(atten)) return atten;
+        /* Light that a surface lets only part of through, yet unchanged: the attenuation
+         * is at the arithmetic's floor (a few lsb in Q32.32, the least subnormal in
+         * double) and can fall no further, however many crossings follow (up to 65,536
+         * queries per shadow ray): it counts as blocked. */
+        if (rt_v3_equal(atten, before) && (atten.x == RT_ZERO || kt.x < RT_ONE) &&
+            (atten.y == RT_ZERO || kt.y < RT_ONE) && (atten.z == RT_ZERO || kt.z < RT_ONE))
+            break;
         /* A hit point that rounds to the origin (coordinates like 1e120, where t = 0.5 is
          * below their rounding) would be found again at every crossing, 65,536 times:
          * the ray cannot get past it, so it counts as blocked. */
-        if (s.point.x == origin.x && s.point.y == origin.y && s.point.z == origin.z) break;
+        if (rt_v3_equal(s.point, origin)) break;
         origin = s.point;
         if (remaining != RT_REAL_MAX) remaining = rt_sub(remaining, hit.hit.t);
     }

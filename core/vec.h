@@ -98,6 +98,7 @@ static inline rt_real rt_v3_get(rt_vec3 a, int axis) { return axis == 0 ? a.x : 
 static inline rt_vec3 rt_v3_div(rt_vec3 a, rt_real d) { return rt_v3(rt_div(a.x, d), rt_div(a.y, d), rt_div(a.z, d)); }
 static inline bool rt_v3_is_finite(rt_vec3 a) { return rt_is_finite(a.x) && rt_is_finite(a.y) && rt_is_finite(a.z); }
 static inline bool rt_v3_is_zero(rt_vec3 a) { return a.x == RT_ZERO && a.y == RT_ZERO && a.z == RT_ZERO; }
+static inline bool rt_v3_equal(rt_vec3 a, rt_vec3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
 static inline rt_vec3 rt_v3_min(rt_vec3 a, rt_vec3 b)
 {
     return rt_v3(rt_min(a.x, b.x), rt_min(a.y, b.y), rt_min(a.z, b.z));
