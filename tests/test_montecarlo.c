@@ -548,7 +548,7 @@ static bool is_a_lights_emission(const rt_scene *s, rt_vec3 c)
 {
     for (uint32_t i = 0; i < s->light_count; i++) {
         rt_vec3 e = rt_v3_scale(s->lights[i].color, RT_AREA_LIGHT_EMISSION);
-        if (s->lights[i].kind == RT_LIGHT_AREA && c.x == e.x && c.y == e.y && c.z == e.z) return true;
+        if (s->lights[i].kind == RT_LIGHT_AREA && rt_v3_equal(c, e)) return true;
     }
     return false;
 }
