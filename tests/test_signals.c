@@ -85,6 +85,39 @@ Test(signals, a_deferred_stop_raises_the_flag_and_the_command_returns_6)
     cr_expect_str_eq(line, "rtk render: scene.yaml: interrupted; nothing written\n");
 }
 
+/* Eight threads each get a SIGTERM at once, as when timeout signals the command and then
+ * its process group while the loader's workers run: one handler ends the process. */
+enum { SIGNALLED_THREADS = 8 };
+static pthread_barrier_t all_started;
+
+static void *signal_myself(void *unused)
+{
+    (void)unused;
+    pthread_barrier_wait(&all_started);
+    pthread_kill(pthread_self(), SIGTERM);
+    for (;;) pause();
+    return NULL;
+}
+
+static void stop_on_every_thread(void)
+{
+    rtp_signals_install("verify", "m.txt");
+    pthread_t threads[SIGNALLED_THREADS];
+    pthread_barrier_init(&all_started, NULL, SIGNALLED_THREADS + 1);
+    for (int i = 0; i < SIGNALLED_THREADS; i++) pthread_create(&threads[i], NULL, signal_myself, NULL);
+    pthread_barrier_wait(&all_started);
+    for (;;) pause();
+}
+
+Test(signals, signals_on_several_threads_print_one_line)
+{
+    for (int run = 0; run < 50; run++) {
+        char line[2048];
+        cr_assert_eq(run_child(stop_on_every_thread, line, sizeof line), 6);
+        cr_assert_str_eq(line, "rtk verify: m.txt: interrupted; nothing written\n", "run %d", run);
+    }
+}
+
 static void ignored_by_the_parent(void)
 {
     signal(SIGHUP, SIG_IGN); /* as nohup does */

@@ -1,11 +1,12 @@
 /* Stopping on SIGINT, SIGTERM and SIGHUP (see signals.h). The handler uses only
- * async-signal-safe calls: unlink, write, _exit. */
+ * async-signal-safe calls and a lock-free atomic: unlink, write, pause, _exit. */
 #include "cli/signals.h"
 
 #include "cli/exit_codes.h"
 #include "cli/message.h"
 #include <limits.h>
 #include <signal.h>
+#include <stdatomic.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <string.h>
@@ -18,8 +19,15 @@ static volatile sig_atomic_t deferred, tracked, streaming;
 static char message[2048], stream_message[2048 + PATH_MAX], temp_path[PATH_MAX];
 static size_t message_len, stream_message_len;
 
+static atomic_flag stopping = ATOMIC_FLAG_INIT;
+
+/* One caller ends the process. A process-directed signal can reach each thread (timeout
+ * sends it to the command and again to its process group), and the main thread can stop
+ * after a deferred signal while a handler runs: the others wait for the _exit. */
 static void stop_now(void)
 {
+    if (atomic_flag_test_and_set(&stopping))
+        for (;;) pause();
     if (tracked) unlink(temp_path);
     if (streaming)
         (void)!write(STDERR_FILENO, stream_message, stream_message_len);
@@ -84,6 +92,8 @@ void rtp_signals_immediate(void)
 
 int rtp_signals_stopped(void)
 {
+    if (atomic_flag_test_and_set(&stopping))
+        for (;;) pause();
     (void)!write(STDERR_FILENO, message, message_len);
     return RTP_EXIT_INTERRUPTED;
 }
