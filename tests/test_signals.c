@@ -95,7 +95,7 @@ static void *signal_myself(void *unused)
     (void)unused;
     pthread_barrier_wait(&all_started);
     pthread_kill(pthread_self(), SIGTERM);
-    for (;;) pause();
+    pause(); /* the handler does not return: it ends the process or waits for the end */
     return NULL;
 }
 
