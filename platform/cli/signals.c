@@ -92,8 +92,6 @@ void rtp_signals_immediate(void)
 
 int rtp_signals_stopped(void)
 {
-    if (atomic_flag_test_and_set(&stopping))
-        for (;;) pause();
     (void)!write(STDERR_FILENO, message, message_len);
     return RTP_EXIT_INTERRUPTED;
 }
