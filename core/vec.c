@@ -27,7 +27,8 @@ static rt_real cofactor(const rt_mat3 *a, int r0, int r1, int c0, int c1)
 /* Each column j is scaled by 16^k[j] into [1/2, 8) first, and row j of the inverse scaled
  * back by the same factor (A = B D^-1, so A^-1 = D B^-1). In Q32.32 a large scale would
  * otherwise leave 1 / det only a few significant bits (1 / 939^3 is about five lsb), and a
- * small or uneven one would lose det itself; in double the scaling is exact. */
+ * small or uneven one would lose det itself; in double the scaling is exact, so the
+ * result is the unscaled formula's to the bit. */
 bool rt_mat3_inverse(const rt_mat3 *a, rt_mat3 *out)
 {
     int k[3];
@@ -51,10 +52,13 @@ bool rt_mat3_inverse(const rt_mat3 *a, rt_mat3 *out)
     rt_real det =
         rt_add(rt_add(rt_mul(b.m[0][0], adj.m[0][0]), rt_mul(b.m[0][1], adj.m[1][0])), rt_mul(b.m[0][2], adj.m[2][0]));
     if (det == RT_ZERO || !rt_is_finite(det)) return false;
-    rt_real inv_det = rt_div(RT_ONE, det);
+    /* det is scaled into [1/2, 8) too: in Q32.32 the reciprocal of det = 1327 (scales near
+     * 0.65 under rotation) would keep 22 significant bits, of det 16^kd at least 29. */
+    int kd = rt_pow16_exponent(rt_abs(det), RT_C(8.0));
+    rt_real inv_det = rt_div(RT_ONE, rt_scale_pow16(det, kd));
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) {
-            rt_real v = rt_scale_pow16(rt_mul(adj.m[i][j], inv_det), k[i]);
+            rt_real v = rt_scale_pow16(rt_mul(adj.m[i][j], inv_det), k[i] + kd);
             if (!rt_is_finite(v)) return false;
             out->m[i][j] = v;
         }

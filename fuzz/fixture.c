@@ -53,13 +53,17 @@ void fz_object_ray(const rt_scene *scene, const fz_trs *trs, rt_ray ray, fz_v3l 
     fz_v3l got_o = fz_l(rt_affine_point(to_object, ray.origin)),
            got_d = fz_l(rt_affine_vector(to_object, ray.direction));
     /* Rounding of the forward matrix grows by the inverse's norm squared (1/smallest scale);
-     * Q32.32's inverse carries a few absolute lsb per entry (measured up to 8 per unit of reach). */
-    fz_v3l s = fz_l(trs->scale);
+     * Q32.32's inverse carries a few absolute lsb per entry. Its angles add their own: each
+     * is d pi/180 with the constant rounded to half an lsb, up to (|d| + 1) 2^-33 rad off,
+     * which turns the object-space ray by up to k times their sum (finding 19). */
+    fz_v3l s = fz_l(trs->scale), deg = fz_l(trs->rotation_degrees);
     long double k = fmaxl(1, 1 / fminl(fminl(s.x, s.y), s.z));
     long double reach = fz_l_len(fz_l(ray.origin)) + fz_l_len(fz_l(trs->translation));
     long double unit = FZ_ABS > 0 ? 256 * FZ_ABS * k * k : 1e3L * FZ_EPS * k;
+    long double turn = k * (fabsl(deg.x) + fabsl(deg.y) + fabsl(deg.z) + 3) * FZ_ABS / 2;
     long double off_o = fz_l_len(fz_l_sub(got_o, want_o)), off_d = fz_l_len(fz_l_sub(got_d, want_d));
-    FZ_CHECK(off_o <= unit * (reach + 1) && off_d <= unit * (fz_l_len(fz_l(ray.direction)) + 1),
+    long double len_d = fz_l_len(fz_l(ray.direction));
+    FZ_CHECK(off_o <= unit * (reach + 1) + turn * reach && off_d <= unit * (len_d + 1) + turn * len_d,
              "to_object is %.3Lg (point) and %.3Lg (direction) off the description's inverse (k %.3Lg, reach %.3Lg)",
              off_o, off_d, k, reach);
     *o = FZ_ABS > 0 ? got_o : want_o;

@@ -22,6 +22,8 @@ if [ "${1:-}" = --one ]; then
     cov=$(grep -o 'cov: [0-9]*' "$dir/log" | tail -1 || true)
     printf '%-8s %-14s %10s execs  %-10s %s\n' "$variant" "$name" "${execs:-?}" "${cov:-}" "$status"
     if [ $status != ok ]; then
+        # The finding's own message first: a long stack trace can push it out of the tail.
+        grep -m 4 -A 1 -E 'invariant broken|ERROR:|runtime error' "$dir/log" | sed 's/^/    /' || true
         grep -v '^#' "$dir/log" | tail -40 | sed 's/^/    /'
         echo "    log and input: $dir"
         exit 1

@@ -378,3 +378,33 @@ Test(precision, a_far_large_sphere_is_hit_within_its_boxs_padding)
         }
     }
 }
+
+/* fuzz_sphere (CI, fixed build, finding 19): rotations near 150 degrees on every axis
+ * under scales near 0.65. The column-scaled matrix has det 1327, whose reciprocal kept 22
+ * significant bits in Q32.32: the inverse was 742 lsb off the matrix's exact inverse,
+ * and the harness saw the object-space ray 1.5 times its bound off. det is now scaled
+ * like the columns first. Measured against the exact inverse (long double adjugate over
+ * determinant of the same entries): 0.86 lsb (fixed; 742 before), 0.97 ulp (double). */
+Test(precision, a_rotated_small_scale_inverts_to_its_exact_inverse)
+{
+    rt_affine m =
+        rt_affine_trs(v3d(0.62, 2.97, 6.73), v3d(-148.60059510194696, -48.639963378431275, 163.78942549787462),
+                      v3d(0.77110541262663901, 0.64841977739706635, 0.64841977739706635));
+    rt_affine inv;
+    cr_assert(rt_affine_inverse(&m, &inv));
+    long double a[3][3];
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++) a[r][c] = rt_to_double(m.linear.m[r][c]);
+    long double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+                      a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+                      a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+    long double worst = 0;
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++) {
+            /* (A^-1)[r][c] = cofactor of a[c][r] / det, from the rows other than c and columns other than r. */
+            int r0 = (c + 1) % 3, r1 = (c + 2) % 3, c0 = (r + 1) % 3, c1 = (r + 2) % 3;
+            long double want = (a[r0][c0] * a[r1][c1] - a[r0][c1] * a[r1][c0]) / det;
+            worst = fmaxl(worst, fabsl(rt_to_double(inv.linear.m[r][c]) - want));
+        }
+    cr_assert(worst <= 8 * ULP, "inverse off the exact one by %.3Lg", worst);
+}
