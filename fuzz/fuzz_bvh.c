@@ -2,9 +2,10 @@
  * primitive. For a soup of triangles, spheres and cylinders from the bytes,
  * rt_scene_nearest with and without the BVH must agree on hit or miss, on the
  * primitive (ties go to the lower reference) and on t, bit for bit; the stream queries
- * (packets) under every kernel the CPU runs must give each of those rays what the
- * one-ray queries give it; and a build under a plan that splits the top of the tree
- * level by level and bins in small chunks must give the same tree, byte for byte. */
+ * (packets) and the one-ray queries under every kernel the CPU runs must give each of
+ * those rays what the build's own kernel gives it; and a build under a plan that splits
+ * the top of the tree level by level and bins in small chunks must give the same tree,
+ * byte for byte. */
 #include <math.h>
 #include <string.h>
 
@@ -140,41 +141,59 @@ static bool kernel_runs(rt_kernel k)
 
 #define MAX_STREAM 256
 
+/* The answers for n rays to one kind of query under kernel k. */
+typedef struct {
+    rt_scene_hit hit[MAX_STREAM];
+    bool found[MAX_STREAM], any[MAX_STREAM];
+} answers;
+
+/* got (kernel k's `how` queries) against want (the build's kernel, one ray at a time),
+ * but where either hits a triangle edge-on (see check_ray). */
+static void compare(const rt_scene *s, const rt_ray *rays, uint32_t n, rt_kernel k, const char *how, const answers *got,
+                    const answers *want)
+{
+    for (uint32_t i = 0; i < n; i++) {
+        if ((want->found[i] && fz_grazing(s, want->hit[i].prim, &rays[i])) ||
+            (got->found[i] && fz_grazing(s, got->hit[i].prim, &rays[i])))
+            continue;
+        FZ_CHECK(want->found[i] == got->found[i] && want->any[i] == got->any[i],
+                 "kernel %d, ray %u: %s %s/%s, build's kernel %s/%s", (int)k, i, how, got->found[i] ? "hit" : "miss",
+                 got->any[i] ? "hit" : "miss", want->found[i] ? "hit" : "miss", want->any[i] ? "hit" : "miss");
+        if (!want->found[i]) continue;
+        const rt_prim_hit *a = &want->hit[i].hit, *b = &got->hit[i].hit;
+        FZ_CHECK(
+            want->hit[i].prim == got->hit[i].prim && !memcmp(&a->t, &b->t, sizeof a->t) &&
+                !memcmp(&a->b1, &b->b1, sizeof a->b1) && !memcmp(&a->b2, &b->b2, sizeof a->b2) && a->part == b->part,
+            "kernel %d, ray %u: %s hits primitive %u at t = %.17g, build's kernel %u at t = %.17g", (int)k, i, how,
+            got->hit[i].prim, rt_to_double(got->hit[i].hit.t), want->hit[i].prim, rt_to_double(want->hit[i].hit.t));
+    }
+}
+
 /* Under every kernel that runs here, the stream queries (packets where the kernel has
- * them) give each ray exactly what the one-ray queries give it, but where either hits a
- * triangle edge-on (see check_ray). */
+ * them) and the one-ray queries give each ray exactly what the build's own kernel gives
+ * it one ray at a time. */
 static void check_streams(const rt_scene *s, const rt_ray *rays, uint32_t n)
 {
     static rt_ray_setup rs[MAX_STREAM];
-    static rt_scene_hit one[MAX_STREAM], many[MAX_STREAM];
-    static bool one_found[MAX_STREAM], many_found[MAX_STREAM], one_any[MAX_STREAM], many_any[MAX_STREAM];
+    static answers want, got;
     for (uint32_t i = 0; i < n; i++) {
         rs[i] = rt_intersect_prepare(rays[i]);
-        one_found[i] = rt_scene_nearest(s, &rs[i], true, &one[i]);
-        one_any[i] = rt_scene_any(s, &rs[i], true);
+        want.found[i] = rt_scene_nearest(s, &rs[i], true, &want.hit[i]);
+        want.any[i] = rt_scene_any(s, &rs[i], true);
     }
     for (rt_kernel k = RT_KERNEL_PORTABLE; k <= RT_KERNEL_AVX2; k++) {
         if (!kernel_runs(k)) continue;
         rt_scene copy = *s;
         FZ_CHECK(rt_bvh_set_kernel(&copy.bvh, k), "kernel %d refused", (int)k);
-        memset(many, 0, sizeof many);
-        rt_scene_nearest_stream(&copy, rs, n, many, many_found);
-        rt_scene_any_stream(&copy, rs, n, many_any);
+        memset(&got, 0, sizeof got);
+        rt_scene_nearest_stream(&copy, rs, n, got.hit, got.found);
+        rt_scene_any_stream(&copy, rs, n, got.any);
+        compare(s, rays, n, k, "stream", &got, &want);
         for (uint32_t i = 0; i < n; i++) {
-            if ((one_found[i] && fz_grazing(s, one[i].prim, &rays[i])) ||
-                (many_found[i] && fz_grazing(s, many[i].prim, &rays[i])))
-                continue;
-            FZ_CHECK(one_found[i] == many_found[i] && one_any[i] == many_any[i],
-                     "kernel %d, ray %u: stream %s/%s, one ray %s/%s", (int)k, i, many_found[i] ? "hit" : "miss",
-                     many_any[i] ? "hit" : "miss", one_found[i] ? "hit" : "miss", one_any[i] ? "hit" : "miss");
-            if (!one_found[i]) continue;
-            const rt_prim_hit *a = &one[i].hit, *b = &many[i].hit;
-            FZ_CHECK(one[i].prim == many[i].prim && !memcmp(&a->t, &b->t, sizeof a->t) &&
-                         !memcmp(&a->b1, &b->b1, sizeof a->b1) && !memcmp(&a->b2, &b->b2, sizeof a->b2) &&
-                         a->part == b->part,
-                     "kernel %d, ray %u: stream hits primitive %u at t = %.17g, one ray %u at t = %.17g", (int)k, i,
-                     many[i].prim, rt_to_double(many[i].hit.t), one[i].prim, rt_to_double(one[i].hit.t));
+            got.found[i] = rt_scene_nearest(&copy, &rs[i], true, &got.hit[i]);
+            got.any[i] = rt_scene_any(&copy, &rs[i], true);
         }
+        compare(s, rays, n, k, "one ray", &got, &want);
     }
 }
 
