@@ -123,10 +123,16 @@ static inline v4f v4_round_outwards(rt_vec3 p, bool up)
     return v4_select(inwards, next, f);
 }
 
-static inline build_ref ref_make(rt_aabb padded, uint32_t prim)
+/* Stores prim's reference with its padded box at *r and returns that box as ref_box
+ * would read it back. Each half is one 16-byte store: a reload then takes it from the
+ * store buffer, which stores of its pieces would stall. */
+static inline bin_box ref_store(build_ref *r, rt_aabb padded, uint32_t prim)
 {
+    const v4i prim_lane = {0, 0, 0, (int32_t)prim};
     v4f lo = v4_round_outwards(padded.lo, false), hi = v4_round_outwards(padded.hi, true);
-    return (build_ref){{lo[0], lo[1], lo[2]}, prim, {hi[0], hi[1], hi[2]}, 0.0f};
+    *(v4f_load *)r->lo = (v4f)((v4i)lo | prim_lane);
+    *(v4f_load *)r->hi = hi;
+    return (bin_box){lo, hi};
 }
 
 /* Loaded once per pass (the bins' stores could alias it), lo's fourth lane cleared. */
@@ -224,7 +230,11 @@ typedef struct {
 
 typedef rt_aabb bin_box;
 
-static inline build_ref ref_make(rt_aabb padded, uint32_t prim) { return (build_ref){padded, prim}; }
+static inline bin_box ref_store(build_ref *r, rt_aabb padded, uint32_t prim)
+{
+    *r = (build_ref){padded, prim};
+    return padded;
+}
 
 static inline bin_box ref_box(const build_ref *r) { return r->bounds; }
 
