@@ -48,19 +48,9 @@ static rt_aabb aabb_widen(rt_aabb b, rt_real pad)
 
 static rt_aabb aabb_pad(rt_aabb b) { return aabb_widen(b, aabb_padding(b)); }
 
-/* Inline in the build's first pass, which bounds every triangle. */
-__attribute__((always_inline)) static inline rt_aabb triangle_bounds(const rt_scene *scene, uint32_t prim)
+/* A quadric fills at most its object-space cube [-0.5, 0.5]^3. */
+static rt_aabb quadric_bounds(const rt_scene *scene, uint32_t prim)
 {
-    const rt_triangle *tri = &scene->triangles[prim];
-    rt_aabb b = rt_aabb_empty();
-    for (int k = 0; k < 3; k++) b = aabb_add_point(b, scene->positions[tri->v[k]]);
-    return aabb_pad(b);
-}
-
-rt_aabb rt_bvh_prim_bounds(const rt_scene *scene, uint32_t prim)
-{
-    if (prim < scene->triangle_count) return triangle_bounds(scene, prim);
-    /* A quadric fills at most its object-space cube [-0.5, 0.5]^3. */
     const rt_object *obj = &scene->objects[scene->quadric_objects[prim - scene->triangle_count]];
     const rt_mat3 *m = &obj->to_world.linear;
     rt_vec3 half = rt_v3(rt_mul(RT_C(0.5), rt_add(rt_add(rt_abs(m->m[0][0]), rt_abs(m->m[0][1])), rt_abs(m->m[0][2]))),
@@ -78,6 +68,19 @@ rt_aabb rt_bvh_prim_bounds(const rt_scene *scene, uint32_t prim)
     return aabb_pad(b);
 #endif
 }
+
+/* Inline in the build's first pass, which bounds every primitive: a triangle's bounds
+ * there, a quadric's out of line. */
+__attribute__((always_inline)) static inline rt_aabb prim_bounds(const rt_scene *scene, uint32_t prim)
+{
+    if (prim >= scene->triangle_count) return quadric_bounds(scene, prim);
+    const rt_triangle *tri = &scene->triangles[prim];
+    rt_aabb b = rt_aabb_empty();
+    for (int k = 0; k < 3; k++) b = aabb_add_point(b, scene->positions[tri->v[k]]);
+    return aabb_pad(b);
+}
+
+rt_aabb rt_bvh_prim_bounds(const rt_scene *scene, uint32_t prim) { return prim_bounds(scene, prim); }
 
 /* ---- Build ---- */
 
@@ -317,8 +320,7 @@ static void bound_refs_job(void *arg, uint32_t index, uint32_t worker)
     centre_bounds centroids = centre_bounds_empty();
     const rt_scene *scene = b->scene;
     for (uint32_t i = first; i < end; i++) {
-        rt_aabb padded = i < scene->triangle_count ? triangle_bounds(scene, i) : rt_bvh_prim_bounds(scene, i);
-        bin_box box = ref_store(&b->refs[i], padded, i);
+        bin_box box = ref_store(&b->refs[i], prim_bounds(scene, i), i);
         bin_box_grow(&bounds, box);
         centre_grow(&centroids, box_centre(box));
     }
