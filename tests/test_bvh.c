@@ -2,7 +2,7 @@
  * tree does not depend on the build's plan or workers. */
 #include "bvh.h"
 #include "scene_query.h"
-#include "thread/threads.h"
+#include "thread/pool.h"
 #include <criterion/criterion.h>
 #include <stdlib.h>
 #include <string.h>
@@ -208,15 +208,16 @@ Test(bvh, tree_does_not_depend_on_plan_or_workers)
     random_scene(&s, &memory, 3000, 50, 1);
     cr_assert_gt(s.bvh.node_count, 200);
     static const rt_bvh_plan plans[] = {{1, 1}, {4, 3}, {9, 1000}, {64, 64}, {300, 17}, {1000, 5000}, {3049, 1}};
-    rt_workers threads[] = {rtp_threads_workers(1), rtp_threads_workers(2), rtp_threads_workers(3),
-                            rtp_threads_workers(7)};
+    rtp_pool *pools[] = {rtp_pool_open(1), rtp_pool_open(2), rtp_pool_open(3), rtp_pool_open(7)};
+    cr_assert_eq(rt_workers_count(rtp_pool_workers(pools[3])), 7, "a pool of 7 workers");
     rt_workers backwards = {5, run_backwards};
     for (size_t p = 0; p < sizeof plans / sizeof plans[0]; p++) {
         assert_same_tree(&s, plans[p], NULL, "on this thread");
         assert_same_tree(&s, plans[p], &backwards, "backwards");
-        for (size_t t = 0; t < sizeof threads / sizeof threads[0]; t++)
-            assert_same_tree(&s, plans[p], &threads[t], "threads");
+        for (size_t t = 0; t < sizeof pools / sizeof pools[0]; t++)
+            assert_same_tree(&s, plans[p], rtp_pool_workers(pools[t]), "threads");
     }
+    for (size_t t = 0; t < sizeof pools / sizeof pools[0]; t++) rtp_pool_close(pools[t]);
     free(memory);
 }
 
@@ -227,13 +228,14 @@ Test(bvh, degenerate_scenes_under_every_plan)
     lcg_state = 3;
     rt_scene s;
     void *memory;
-    rt_workers two = rtp_threads_workers(2);
+    rtp_pool *two = rtp_pool_open(2);
     random_scene(&s, &memory, 1, 0, 1);
-    assert_same_tree(&s, (rt_bvh_plan){1, 1}, &two, "one triangle");
+    assert_same_tree(&s, (rt_bvh_plan){1, 1}, rtp_pool_workers(two), "one triangle");
     free(memory);
     random_scene(&s, &memory, 0, 40, 0);
     cr_assert_eq(s.bvh.node_count, 1);
     cr_assert_eq(s.bvh.nodes[0].count[0], 40, "one leaf of every sphere");
-    assert_same_tree(&s, (rt_bvh_plan){2, 3}, &two, "coincident spheres");
+    assert_same_tree(&s, (rt_bvh_plan){2, 3}, rtp_pool_workers(two), "coincident spheres");
     free(memory);
+    rtp_pool_close(two);
 }

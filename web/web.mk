@@ -35,9 +35,9 @@ ZLIB_OBJ := $(patsubst %,$(WEB_BUILD)/lib/z/%.o,adler32 compress crc32 deflate i
 SPNG_OBJ := $(WEB_BUILD)/lib/spng/spng.o
 
 WEB_CORE_SRC := $(call core_sources,double)
-# platform/thread/threads.c needs POSIX threads; wasm gets one thread (web/wasm/parallel_serial.c).
+# platform/thread/threads.c and pool.c need POSIX threads; wasm gets one thread (web/wasm/parallel_serial.c).
 # WASI has no signals to handle (web/wasm/signals_none.c), no file owners or modes (owner_none.c).
-WEB_PLATFORM_SRC := $(filter-out platform/cli/main.c platform/thread/threads.c platform/cli/signals.c,\
+WEB_PLATFORM_SRC := $(filter-out platform/cli/main.c platform/thread/threads.c platform/thread/pool.c platform/cli/signals.c,\
 	$(wildcard platform/*/*.c))
 WEB_SHIM_SRC := web/wasm/parallel_serial.c web/wasm/realpath.c web/wasm/signals_none.c web/wasm/owner_none.c
 WEB_CORE_OBJ := $(WEB_CORE_SRC:%.c=$(WEB_BUILD)/%.o)

@@ -6,7 +6,7 @@
 #include "load/input_file.h"
 #include "mem/mem.h"
 #include "thread/kernel.h"
-#include "thread/threads.h"
+#include "thread/pool.h"
 #include <stdio.h>
 #include <string.h>
 
@@ -61,8 +61,9 @@ int rtp_scene_open(const char *path, const rtp_scene_options *opt, rtp_scene *ou
         if (!out->memory) return fail_memory(out, shown, err, err_size);
         rt_arena_init(&out->arena, out->memory, size);
         rt_build_error be;
-        rt_workers workers = rtp_threads_workers(opt->threads);
-        rt_status st = rt_scene_build(&out->loaded.desc, &out->arena, &workers, &out->scene, &be);
+        rtp_pool *pool = rtp_pool_open(opt->threads);
+        rt_status st = rt_scene_build(&out->loaded.desc, &out->arena, rtp_pool_workers(pool), &out->scene, &be);
+        rtp_pool_close(pool);
         if (st == RT_OK) {
             rt_bvh_set_kernel(&out->scene.bvh, opt->kernel_forced ? opt->kernel : rtp_kernel_best());
             return RTP_EXIT_OK;

@@ -3,7 +3,7 @@
 
 #include "mem/mem.h"
 #include "raylog.h"
-#include "thread/threads.h"
+#include "thread/pool.h"
 
 /* Rays and light terms one estimated sample may log; past that it counts as this many. */
 #define RTP_CUT_LOG_CAPACITY 4096u
@@ -61,8 +61,9 @@ bool rtp_part_cut(const rt_scene *scene, uint32_t count, uint32_t threads, uint3
     const rt_camera *cam = &scene->camera;
     estimate e = {scene, ceil_div(cam->width, RTP_CUT_COLUMNS), ceil_div(cam->height, RTP_CUT_ROWS), NULL, NULL};
     uint32_t bands = ceil_div(cam->height, e.step_y);
-    rt_workers workers = rtp_threads_workers(threads);
-    uint32_t n = rt_workers_count(&workers);
+    rtp_pool *pool = rtp_pool_open(threads);
+    const rt_workers *workers = rtp_pool_workers(pool);
+    uint32_t n = rt_workers_count(workers);
     e.band_cost = rtp_mem_calloc(bands, sizeof *e.band_cost, "the cut's estimate");
     e.logs = rtp_mem_calloc(n, sizeof *e.logs, "the cut's ray logs");
     bool ok = e.band_cost && e.logs;
@@ -73,7 +74,7 @@ bool rtp_part_cut(const rt_scene *scene, uint32_t count, uint32_t threads, uint3
         ok = e.logs[w].rays && e.logs[w].lights;
     }
     if (ok) {
-        rt_workers_run(&workers, estimate_row, &e, bands);
+        rt_workers_run(workers, estimate_row, &e, bands);
         cut_rows(&e, cam->height, count, starts);
     }
     for (uint32_t w = 0; e.logs && w < n; w++) {
@@ -82,6 +83,7 @@ bool rtp_part_cut(const rt_scene *scene, uint32_t count, uint32_t threads, uint3
     }
     rtp_mem_free(e.logs);
     rtp_mem_free(e.band_cost);
+    rtp_pool_close(pool);
     return ok;
 }
 

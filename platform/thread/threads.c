@@ -1,4 +1,4 @@
-/* Job sets and the tile scheduler over POSIX threads; see threads.h. */
+/* The tile scheduler over POSIX threads; see threads.h. */
 #include "thread/threads.h"
 
 #include <pthread.h>
@@ -57,54 +57,6 @@ uint32_t rtp_threads_count(uint32_t requested)
 {
     long cpus = sysconf(_SC_NPROCESSORS_ONLN);
     return requested ? requested : cpus > 0 ? (uint32_t)cpus : 1;
-}
-
-/* One job set being run: the next job index to hand out. */
-typedef struct {
-    rt_job_fn *job;
-    void *arg;
-    uint32_t jobs;
-    atomic_uint next;
-} job_set;
-
-typedef struct {
-    job_set *set;
-    uint32_t worker;
-} set_worker;
-
-static void take_jobs(job_set *set, uint32_t worker)
-{
-    for (unsigned i; (i = atomic_fetch_add(&set->next, 1)) < set->jobs;) set->job(set->arg, i, worker);
-}
-
-static void *set_worker_main(void *arg)
-{
-    set_worker *w = arg;
-    take_jobs(w->set, w->worker);
-    return NULL;
-}
-
-static void run_on_threads(const rt_workers *w, rt_job_fn *fn, void *arg, uint32_t jobs)
-{
-    job_set set = {.job = fn, .arg = arg, .jobs = jobs};
-    atomic_init(&set.next, 0);
-    uint32_t extra = (w->count < jobs ? w->count : jobs) - 1, started = 0;
-    pthread_t *threads = calloc(extra, sizeof *threads);
-    set_worker *workers = calloc(extra, sizeof *workers);
-    for (; threads && workers && started < extra; started++) {
-        workers[started] = (set_worker){&set, started + 1};
-        if (pthread_create(&threads[started], NULL, set_worker_main, &workers[started]) != 0) break;
-    }
-    take_jobs(&set, 0);
-    for (uint32_t i = 0; i < started; i++) pthread_join(threads[i], NULL);
-    free(threads);
-    free(workers);
-}
-
-rt_workers rtp_threads_workers(uint32_t threads)
-{
-    rt_workers w = {rtp_threads_count(threads), run_on_threads};
-    return w;
 }
 
 bool rtp_threads_render(const rt_tracer *tr, const rtp_threads_options *opt, uint8_t *rgb)

@@ -1,5 +1,5 @@
-/* Worker threads: the core's job sets (workers.h) and the tile renderer, with an
- * optional progress bar. */
+/* Worker threads for the tile renderer, with an optional progress bar (the core's job
+ * sets run on pool.h). */
 #ifndef RTP_THREADS_H
 #define RTP_THREADS_H
 
@@ -25,10 +25,5 @@ bool rtp_threads_render_region(const rt_tracer *tr, const rtp_threads_options *o
 
 /* The number of threads a request stands for: itself, or one per online CPU for 0. */
 uint32_t rtp_threads_count(uint32_t requested);
-
-/* Workers for the core's job sets on up to `threads` POSIX threads (0: one per online
- * CPU), the calling thread among them. A thread that cannot start leaves its share to
- * the others, so a job set always completes. */
-rt_workers rtp_threads_workers(uint32_t threads);
 
 #endif

@@ -1,5 +1,6 @@
-/* platform/thread/threads.h for WebAssembly, where wasi-libc has no threads: one worker, the
+/* platform/thread/threads.h and pool.h for WebAssembly, where wasi-libc has no threads: one worker, the
  * calling thread. The browser spreads a render over Web Workers instead (web/app). */
+#include "thread/pool.h"
 #include "thread/threads.h"
 
 uint32_t rtp_threads_count(uint32_t requested)
@@ -8,18 +9,20 @@ uint32_t rtp_threads_count(uint32_t requested)
     return 1;
 }
 
-static void run_in_order(const rt_workers *w, rt_job_fn *fn, void *arg, uint32_t jobs)
-{
-    (void)w;
-    for (uint32_t i = 0; i < jobs; i++) fn(arg, i, 0);
-}
-
-rt_workers rtp_threads_workers(uint32_t threads)
+/* No threads: no pool, so the core runs each job set in order on the calling thread. */
+rtp_pool *rtp_pool_open(uint32_t threads)
 {
     (void)threads;
-    rt_workers w = {1, run_in_order};
-    return w;
+    return NULL;
 }
+
+const rt_workers *rtp_pool_workers(const rtp_pool *pool)
+{
+    (void)pool;
+    return NULL;
+}
+
+void rtp_pool_close(rtp_pool *pool) { (void)pool; }
 
 bool rtp_threads_render(const rt_tracer *tr, const rtp_threads_options *opt, uint8_t *rgb)
 {
