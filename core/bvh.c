@@ -240,14 +240,15 @@ typedef struct {
     int grid;
     /* The references' bounds and centroid bounds, per chunk of plan.chunk. */
     rt_aabb *chunk_bounds, *chunk_centroids;
-    /* A level of the top of the tree: its tasks, their binnings, the binned chunks, the
-     * splits found (or not), and the children made, two per task. */
+    /* A level of the top of the tree: its tasks, whether each split, and the children
+     * made, two per task; for a level binned in chunks, the tasks' binnings, the chunks
+     * and the splits found. */
     build_task *level;
+    bool *level_splits;
+    build_task *children;
     binning *level_binning;
     bin_chunk *chunks;
     split *level_split;
-    bool *level_splits;
-    build_task *children;
     /* The subtrees built whole, the inner nodes each made, and a stack per worker. */
     build_task *subtrees;
     uint32_t *subtree_inner;
@@ -283,6 +284,22 @@ static void make_node(const build *b, const build_task *task, const split *s, ui
     kids[1] = (build_task){left + 1, task->first + left_n, task->count - left_n, task->depth + 1, s->right, right_c};
 }
 
+/* Bins and prices task and stores its node (make_node, with next_pair); returns whether
+ * it split, into kids. */
+static bool split_task(const build *b, const build_task *task, uint32_t *next_pair, build_task kids[2])
+{
+    split s;
+    bool splits = false;
+    if (task->count > LEAF_MIN && task->depth < RT_BVH_MAX_DEPTH) {
+        binning g = binning_make(task->centroids);
+        bins all;
+        bin_refs(&all, &g, b->refs, task->first, task->count);
+        splits = price_split(task, &g, &all, &s);
+    }
+    make_node(b, task, splits ? &s : NULL, next_pair, kids);
+    return splits;
+}
+
 /* Builds the subtree of root depth first on one worker; returns its inner node count. */
 static uint32_t build_subtree(const build *b, build_task root, build_task *stack)
 {
@@ -290,16 +307,7 @@ static uint32_t build_subtree(const build *b, build_task root, build_task *stack
     stack[top++] = root;
     while (top > 0) {
         build_task task = stack[--top], kids[2];
-        split s;
-        bool splits = false;
-        if (task.count > LEAF_MIN && task.depth < RT_BVH_MAX_DEPTH) {
-            binning g = binning_make(task.centroids);
-            bins all;
-            bin_refs(&all, &g, b->refs, task.first, task.count);
-            splits = price_split(&task, &g, &all, &s);
-        }
-        make_node(b, &task, splits ? &s : NULL, &next_pair, kids);
-        if (!splits) continue;
+        if (!split_task(b, &task, &next_pair, kids)) continue;
         inner++;
         /* Right first, so the left subtree is built next (a bounded stack). */
         RT_ASSERT(top + 2 <= SUBTREE_STACK);
@@ -328,6 +336,13 @@ static void bound_refs_job(void *arg, uint32_t index, uint32_t worker)
     b->chunk_centroids[index] = centre_bounds_aabb(centroids);
 }
 
+static void split_task_job(void *arg, uint32_t index, uint32_t worker)
+{
+    (void)worker;
+    build *b = arg;
+    b->level_splits[index] = split_task(b, &b->level[index], NULL, &b->children[2 * index]);
+}
+
 static void bin_chunk_job(void *arg, uint32_t index, uint32_t worker)
 {
     (void)worker;
@@ -336,7 +351,7 @@ static void bin_chunk_job(void *arg, uint32_t index, uint32_t worker)
     bin_refs(&c->bins, &b->level_binning[c->task], b->refs, c->first, c->count);
 }
 
-static void split_level_job(void *arg, uint32_t index, uint32_t worker)
+static void partition_job(void *arg, uint32_t index, uint32_t worker)
 {
     (void)worker;
     build *b = arg;
@@ -356,10 +371,9 @@ static bool is_top(const build *b, const build_task *task)
     return task->count > b->plan.split_above && task->count > LEAF_MIN && task->depth < RT_BVH_MAX_DEPTH;
 }
 
-/* Splits one level of top tasks (b->level[0 .. count)): bins them in chunks, prices the
- * merged bins, partitions each task in its own job; the children that are top tasks
- * again become the next level (returned count), the others join the subtrees. */
-static uint32_t split_level(build *b, uint32_t count, uint32_t *subtrees, uint32_t *inner)
+/* Splits a level of top tasks fewer than the workers: bins them in chunks over all the
+ * workers, prices the merged bins, and partitions each task in its own job. */
+static void split_level_in_chunks(build *b, uint32_t count)
 {
     uint32_t chunks = 0;
     for (uint32_t t = 0; t < count; t++) {
@@ -379,7 +393,21 @@ static uint32_t split_level(build *b, uint32_t count, uint32_t *subtrees, uint32
         while (c < chunks && b->chunks[c].task == t) merge_bins(all, &b->chunks[c++].bins);
         b->level_splits[t] = price_split(&b->level[t], &b->level_binning[t], all, &b->level_split[t]);
     }
-    rt_workers_run(b->workers, split_level_job, b, count);
+    rt_workers_run(b->workers, partition_job, b, count);
+}
+
+/* Splits one level of top tasks (b->level[0 .. count)). With at least as many tasks as
+ * workers, one job bins, prices and partitions each task, so that the partition finds
+ * the references in the caches of the core that binned them; fewer are binned in chunks
+ * over all the workers. The bins, and so the tree, are the same either way. The
+ * children that are top tasks again become the next level (returned count), the others
+ * join the subtrees. */
+static uint32_t split_level(build *b, uint32_t count, uint32_t *subtrees, uint32_t *inner)
+{
+    if (count < rt_workers_count(b->workers))
+        split_level_in_chunks(b, count);
+    else
+        rt_workers_run(b->workers, split_task_job, b, count);
     uint32_t next = 0;
     for (uint32_t t = 0; t < count; t++) {
         if (!b->level_splits[t]) continue;
@@ -397,8 +425,8 @@ static uint32_t split_level(build *b, uint32_t count, uint32_t *subtrees, uint32
 
 rt_bvh_plan rt_bvh_default_plan(void)
 {
-    /* About 50 top tasks and 50 subtrees for a million references; a chunk bins in
-     * about a millisecond. */
+    /* About 50 top tasks and 50 subtrees for a million references; a chunk is bounded
+     * in about a third of a millisecond, binned in about a tenth. */
     rt_bvh_plan p = {16384, 16384};
     return p;
 }

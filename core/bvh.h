@@ -17,7 +17,7 @@ typedef struct {
     /* Tasks of more references than this are split one level at a time, each split a job
      * of its own; smaller ones are built whole, one job each. */
     uint32_t split_above;
-    uint32_t chunk; /* references per job where a task's references are bounded or binned */
+    uint32_t chunk; /* references per job where many references are bounded or binned */
 } rt_bvh_plan;
 
 rt_bvh_plan rt_bvh_default_plan(void);

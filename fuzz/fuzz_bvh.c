@@ -4,7 +4,7 @@
  * primitive (ties go to the lower reference) and on t, bit for bit; the stream queries
  * (packets) and the one-ray queries under every kernel the CPU runs must give each of
  * those rays what the build's own kernel gives it; and a build under a plan that splits
- * the top of the tree level by level and bins in small chunks must give the same tree,
+ * the top of the tree level by level and bounds in small chunks must give the same tree,
  * byte for byte. */
 #include <math.h>
 #include <string.h>
@@ -91,14 +91,22 @@ static void check_tree(const rt_scene *s)
     for (uint32_t p = 0; p < s->prim_count; p++) FZ_CHECK(seen[p], "primitive %u is in no leaf", p);
 }
 
-/* Rebuilds s's tree under plan and checks it is s's tree. */
+/* Runs a job set in order on this thread, as one of many workers would. */
+static void run_in_order(const rt_workers *w, rt_job_fn *job, void *arg, uint32_t jobs)
+{
+    for (uint32_t i = 0; i < jobs; i++) job(arg, i, i % w->count);
+}
+
+/* Rebuilds s's tree under plan, as if on 16 workers (so that levels of fewer than 16
+ * tasks are binned in chunks), and checks it is s's tree. */
 static void check_plan(const rt_scene *s, rt_bvh_plan plan)
 {
+    static const rt_workers many = {16, run_in_order};
     static uint8_t memory[1u << 20];
     rt_arena arena;
     rt_arena_init(&arena, memory, sizeof memory);
     rt_scene copy = *s;
-    FZ_CHECK(rt_bvh_build_planned(&copy, &arena, NULL, plan) == RT_OK, "plan %u/%u: out of memory", plan.split_above,
+    FZ_CHECK(rt_bvh_build_planned(&copy, &arena, &many, plan) == RT_OK, "plan %u/%u: out of memory", plan.split_above,
              plan.chunk);
     FZ_CHECK(copy.bvh.node_count == s->bvh.node_count && copy.bvh.depth == s->bvh.depth &&
                  !memcmp(copy.bvh.nodes, s->bvh.nodes, s->bvh.node_count * sizeof(rt_bvh_node)) &&

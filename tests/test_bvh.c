@@ -198,7 +198,7 @@ static void assert_same_tree(const rt_scene *s, rt_bvh_plan plan, const rt_worke
 }
 
 /* The scene build (default plan; 3050 references are built as one job) is the reference:
- * splitting the top of the tree level by level, binning in chunks of any size, and
+ * splitting the top of the tree level by level, bounding in chunks of any size, and
  * running the jobs on threads or backwards give the same tree. */
 Test(bvh, tree_does_not_depend_on_plan_or_workers)
 {
