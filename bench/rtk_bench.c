@@ -170,7 +170,8 @@ static double time_build(const rt_scene *scene, uint32_t threads, uint32_t repea
     size_t n = scene->prim_count;
     size_t size =
         n * (2 * sizeof(rt_bvh_node) + sizeof(uint32_t) + sizeof(rt_aabb) + sizeof(rt_vec3)) + ((size_t)1 << 20);
-    /* The pool's threads start before the timed region, as Embree's device's do. */
+    /* One pool for every build, as Embree's task scheduler keeps its threads between
+     * commits: its threads start in the first build. */
     rtp_pool *pool = rtp_pool_open(threads);
     double best = 0.0;
     for (uint32_t r = 0; r < repeats; r++) {

@@ -121,15 +121,15 @@ rtp_pool *rtp_pool_open(uint32_t threads)
     uint32_t extra = rtp_threads_count(threads) - 1;
     rtp_pool *p = calloc(1, sizeof *p);
     if (!p) return NULL;
+    pthread_mutex_init(&p->lock, NULL);
+    pthread_cond_init(&p->wake, NULL);
+    pthread_cond_init(&p->done, NULL);
     p->threads = calloc(extra ? extra : 1, sizeof *p->threads);
     p->slots = calloc(extra ? extra : 1, sizeof *p->slots);
     if (!p->threads || !p->slots) {
         rtp_pool_close(p);
         return NULL;
     }
-    pthread_mutex_init(&p->lock, NULL);
-    pthread_cond_init(&p->wake, NULL);
-    pthread_cond_init(&p->done, NULL);
     atomic_init(&p->next, 0);
     atomic_init(&p->busy, 0);
     atomic_init(&p->generation, 0);
@@ -148,11 +148,9 @@ void rtp_pool_close(rtp_pool *pool)
         publish(pool);
         for (uint32_t i = 0; i < pool->started; i++) pthread_join(pool->threads[i], NULL);
     }
-    if (pool->threads && pool->slots) {
-        pthread_cond_destroy(&pool->done);
-        pthread_cond_destroy(&pool->wake);
-        pthread_mutex_destroy(&pool->lock);
-    }
+    pthread_cond_destroy(&pool->done);
+    pthread_cond_destroy(&pool->wake);
+    pthread_mutex_destroy(&pool->lock);
     free(pool->slots);
     free(pool->threads);
     free(pool);

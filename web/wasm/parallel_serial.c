@@ -1,5 +1,6 @@
-/* platform/thread/threads.h and pool.h for WebAssembly, where wasi-libc has no threads: one worker, the
- * calling thread. The browser spreads a render over Web Workers instead (web/app). */
+/* platform/thread/threads.h and pool.h for WebAssembly, where wasi-libc has no threads:
+ * one worker, the calling thread. The browser spreads a render over Web Workers instead
+ * (web/app). */
 #include "thread/pool.h"
 #include "thread/threads.h"
 
