@@ -11,19 +11,29 @@
 # on more than 0.01% or a render fails.
 #
 # Environment: BENCH_ASSETS (default ../shared/cse457), BENCH_SIZE (default 1024x1024),
-# BENCH_REPEATS (best of N, default 2), BENCH_LEVELS (default "0 1 2 3 4 5").
+# BENCH_ROUNDS (rtk and Embree take turns, default 2 rounds) and BENCH_REPEATS (each
+# one's repeats in a round, default 3; each figure is the best of them all, as in
+# bench/run.sh), BENCH_LEVELS (default "0 1 2 3 4 5").
 set -eu
 
 ASSETS=${BENCH_ASSETS:-../shared/cse457}
 SIZE=${BENCH_SIZE:-1024x1024}
-REPEATS=${BENCH_REPEATS:-2}
+ROUNDS=${BENCH_ROUNDS:-2}
+REPEATS=${BENCH_REPEATS:-3}
 LEVELS=${BENCH_LEVELS:-0 1 2 3 4 5}
 OUT=build/bench-scale
 mkdir -p "$OUT"
-rm -f "$OUT"/*.txt "$OUT"/*.list "$OUT/scale.csv" "$OUT/scale.png"
+rm -rf "$OUT"/*.txt "$OUT"/*.list "$OUT/scale.csv" "$OUT/scale.png" "$OUT/rounds"
+mkdir -p "$OUT/rounds"
 
 note() { printf '%s\n' "$*" >&2; }
 val() { [ -f "$1" ] && awk -v k="$2" '$1 == k { print $2; exit }' "$1" || true; }
+# Merges the rounds of kernel $1 into the file $2 (bench/best_of_rounds.awk).
+best_of_rounds() {
+    local files=() r
+    for r in $(seq "$ROUNDS"); do files+=("$OUT/rounds/$1.$r.txt"); done
+    awk -f bench/best_of_rounds.awk "${files[@]}" >"$2"
+}
 
 load_start=$(cut -d' ' -f1 /proc/loadavg)
 csv=$OUT/scale.csv
@@ -34,11 +44,24 @@ for level in $LEVELS; do
     D=$OUT/rtk-L$level.txt E=$OUT/embree-L$level.txt A=$OUT/agree-L$level.txt
     note "[level $level] workload"
     build/bench/rtk-bench rays "$scene" "$OUT/workload.bin" --assets "$ASSETS" --size "$SIZE" >"$OUT/rays-L$level.txt"
-    note "[level $level] Embree"
-    build/bench/embree-harness "$OUT/workload.bin" --repeats "$REPEATS" --no-high --results "$OUT/embree.res" >"$E"
-    note "[level $level] rtk"
-    build/bench/rtk-bench run "$scene" "$OUT/workload.bin" --assets "$ASSETS" --repeats "$REPEATS" \
-        --results "$OUT/rtk.res" >"$D"
+    for round in $(seq "$ROUNDS"); do
+        embree_res="" rtk_res=""
+        [ "$round" = 1 ] && embree_res=$OUT/embree.res rtk_res=$OUT/rtk.res
+        # Embree first in odd rounds, rtk first in even ones.
+        for turn in 1 2; do
+            if [ $(((round + turn) % 2)) = 0 ]; then
+                note "[level $level] Embree, round $round/$ROUNDS"
+                build/bench/embree-harness "$OUT/workload.bin" --repeats "$REPEATS" --no-high \
+                    ${embree_res:+--results "$embree_res"} >"$OUT/rounds/embree.$round.txt"
+            else
+                note "[level $level] rtk, round $round/$ROUNDS"
+                build/bench/rtk-bench run "$scene" "$OUT/workload.bin" --assets "$ASSETS" --repeats "$REPEATS" \
+                    ${rtk_res:+--results "$rtk_res"} >"$OUT/rounds/rtk.$round.txt"
+            fi
+        done
+    done
+    best_of_rounds embree "$E"
+    best_of_rounds rtk "$D"
     # At 3 and 13 million triangles a pixel sees many triangle edges: camera rays that
     # the two kernels send to neighbouring triangles (sharing a vertex) are edge rounding,
     # counted apart (docs/performance.md, Method).
