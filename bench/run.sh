@@ -9,14 +9,14 @@
 #
 # Environment: BENCH_FIXED=1 when build-fixed/ is usable; BENCH_ASSETS (default
 # ../shared/cse457, the folder holding assets/); BENCH_SIZE (camera rays, default
-# 1024x1024); BENCH_ROUNDS (the kernels take turns, default 2 rounds) and BENCH_REPEATS
+# 1024x1024); BENCH_ROUNDS (the kernels take turns, default 3 rounds) and BENCH_REPEATS
 # (each kernel's repeats in a round, default 3): each row is the best of them all.
 set -eu
 
 ASSETS=${BENCH_ASSETS:-../shared/cse457}
 FIXED=${BENCH_FIXED:-0}
 SIZE=${BENCH_SIZE:-1024x1024}
-ROUNDS=${BENCH_ROUNDS:-2}
+ROUNDS=${BENCH_ROUNDS:-3}
 REPEATS=${BENCH_REPEATS:-3}
 OUT=build/bench
 MESH=scenes/bench/dense_mesh.yaml
