@@ -154,9 +154,9 @@ static bool time_queries(const char *name, const rt_scene *scene, const bench_ra
 /* Fresh memory for one build, as Embree's commit gets it: anonymous pages on a 2 MiB
  * boundary, with transparent huge pages asked for (Linux's default "madvise" mode gives
  * them only to who asks). Embree's does: about 39 page faults a commit (getrusage) for
- * some 70 MB, so 2 MiB pages. Unaligned, the first 2 MiB or less of the arena (where the build starts)
- * took 4 KiB faults: 261 faults a dense_mesh build instead of 40. size: a multiple of
- * HUGE_PAGE. NULL when mapping fails. */
+ * some 70 MB, so 2 MiB pages. Unaligned, the first 2 MiB or less of the arena (where
+ * the build starts) took 4 KiB faults: 261 faults a dense_mesh build instead of 40.
+ * size: a multiple of HUGE_PAGE. NULL when mapping fails. */
 static void *map_memory(size_t size)
 {
     char *p = mmap(NULL, size + HUGE_PAGE, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
