@@ -2,12 +2,17 @@
  * nearest hit with the tie rule of bvh.h. In the double build the triangles' edge
  * functions are first computed two at a time (vector_size(16) doubles: SSE2, NEON),
  * with exactly the scalar test's operations, so only triangles that test can hit take
- * the whole test. Included by scene_query.c and the packet walks (bvh_packet.h). */
+ * the whole test. Included by scene_query.c and each kernel's walks (bvh_kernel_*.c),
+ * which may compile visit_leaf for their instruction set (LEAF_TARGET). */
 #ifndef RT_BVH_LEAF_H
 #define RT_BVH_LEAF_H
 
 #include "bvh.h"
 #include "scene_query.h"
+
+#ifndef LEAF_TARGET
+#define LEAF_TARGET
+#endif
 
 /* Where a quadric's test starts on the ray, as a ray parameter: 0, or in the fixed build,
  * for an origin more than 256 from the quadric's centre on some axis, the point of the ray
@@ -202,9 +207,9 @@ __attribute__((always_inline)) static inline bool leaf_permuted(const rt_scene *
  * loop keeps its registers; with `any`, stops at the first hit. Returns *found. The fixed
  * build has a second copy without saturation tests for the rays and scenes that cannot
  * reach the rails (rt_triangle_unsaturated: every scene within RT_TRIANGLE_RANGE). */
-__attribute__((noinline, unused)) static bool visit_leaf(const rt_scene *scene, uint32_t first, uint32_t count,
-                                                         const rt_ray_setup *rs, bool any, rt_scene_hit *best,
-                                                         bool *found)
+__attribute__((noinline, unused)) static LEAF_TARGET bool visit_leaf(const rt_scene *scene, uint32_t first,
+                                                                     uint32_t count, const rt_ray_setup *rs, bool any,
+                                                                     rt_scene_hit *best, bool *found)
 {
 #ifdef RT_REAL_FIXED
     if (rt_triangle_unsaturated(rs, scene->bvh.extent))

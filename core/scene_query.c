@@ -1,5 +1,5 @@
 /* Scene queries: nearest and any hit along a ray, with the tie rule of scene_query.h: the
- * float walk (bvh_float.h) for the rays it takes, the general walk here for the others. */
+ * float walk (bvh_walk.h) for the rays it takes, the general walk here for the others. */
 #include "scene_query.h"
 #include "bvh_slab.h"
 #include "invariant.h"
@@ -121,7 +121,8 @@ static bool walk(const rt_scene *scene, const rt_ray_setup *rs, bool any, rt_sce
     float_slab f;
     if (scene->bvh.kernel != RT_KERNEL_PORTABLE && scene->prim_count > 0 &&
         float_slab_prepare(rs, scene->bvh.extent, &f))
-        return float_walk(scene, rs, &f, any, out);
+        return scene->bvh.kernel == RT_KERNEL_AVX2 ? rt_bvh_walk_avx2(scene, rs, &f, any, out)
+                                                   : rt_bvh_walk_sse2(scene, rs, &f, any, out);
 #endif
     return nearest_bvh(scene, rs, any, out);
 }

@@ -1,9 +1,0 @@
-/* The packet walk of bvh_packet.h in 128-bit vectors (SSE2, x86's baseline). */
-#include "bvh_float.h"
-
-#if FLOAT_WALK
-#define PACKET_VEC 16
-#define PACKET_TARGET
-#define PACKET_WALK rt_bvh_packet_sse2
-#include "bvh_packet.h"
-#endif
