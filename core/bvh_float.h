@@ -32,25 +32,32 @@ static inline float float_outward(double x, bool up)
     return (float)(up ? x + pad : x - pad);
 }
 
+/* Axis k of float_slab_prepare; returns whether the float bounds can take it. Without a
+ * branch: `&` in place of `&&`, and the pad's sign in place of a choice. */
+__attribute__((always_inline)) static inline bool float_slab_axis(rt_real o, rt_real iv, rt_real extent, int k,
+                                                                  float_slab *f)
+{
+    rt_real mag = __builtin_fabs(iv), o_mag = __builtin_fabs(o);
+    /* (p - o') inv <= (p - o) inv needs o' >= o for inv > 0, o' <= o for inv < 0: the near
+     * planes' origin moves outwards (float_outward) along inv's sign, the far planes' against it. */
+    rt_real pad = __builtin_copysign(o_mag * 0x1p-23 + 0x1p-126, iv);
+    f->o_near[k] = (float)(o + pad);
+    f->o_far[k] = (float)(o - pad);
+    f->inv_near[k] = (float)(iv * (1.0 - 0x1p-21));
+    f->inv_far[k] = (float)(iv * (1.0 + 0x1p-21));
+    return (mag >= 0x1p-100) & (mag <= 0x1p100) & (o_mag <= 0x1p100) & ((extent + o_mag) * mag <= 0x1p120);
+}
+
 /* Fills *f for the ray and returns true, or false if the ray must take the double test. */
 static inline bool float_slab_prepare(const rt_ray_setup *rs, rt_real extent, float_slab *f)
 {
+    rt_vec3 o = rs->ray.origin, iv = rs->inv_direction;
     rt_real t_min = rs->ray.t_min;
-    bool usable = t_min >= 0x1p-100 && t_min <= 0x1p100;
-    for (int k = 0; k < 3; k++) {
-        rt_real o = rt_v3_get(rs->ray.origin, k), iv = rt_v3_get(rs->inv_direction, k);
-        rt_real mag = __builtin_fabs(iv), o_mag = __builtin_fabs(o);
-        usable &= mag >= 0x1p-100 && mag <= 0x1p100 && o_mag <= 0x1p100 && (extent + o_mag) * mag <= 0x1p120;
-        /* (p - o') inv <= (p - o) inv needs o' >= o for inv > 0, o' <= o for inv < 0. */
-        float up = float_outward(o, true), down = float_outward(o, false);
-        f->o_near[k] = iv > 0 ? up : down;
-        f->o_far[k] = iv > 0 ? down : up;
-        f->inv_near[k] = (float)(iv * (1.0 - 0x1p-21));
-        f->inv_far[k] = (float)(iv * (1.0 + 0x1p-21));
-    }
+    bool usable = float_slab_axis(o.x, iv.x, extent, 0, f) & float_slab_axis(o.y, iv.y, extent, 1, f) &
+                  float_slab_axis(o.z, iv.z, extent, 2, f);
     f->t_min = float_outward(t_min, false);
     f->t_max = float_outward(rs->ray.t_max, true);
-    return usable;
+    return usable & (t_min >= 0x1p-100) & (t_min <= 0x1p100);
 }
 
 static inline v4f v4f_all(float x) { return (v4f){x, x, x, x}; }
