@@ -1,9 +1,10 @@
 /* A BVH leaf visited by one ray: the exact test of each of its references, keeping the
  * nearest hit with the tie rule of bvh.h. In the double build the triangles' edge
  * functions are first computed two at a time (vector_size(16) doubles: SSE2, NEON),
- * with exactly the scalar test's operations, so only triangles that test can hit take
- * the whole test. Included by scene_query.c and each kernel's walks (bvh_kernel_*.c),
- * which may compile visit_leaf for their instruction set (LEAF_TARGET). */
+ * with exactly the scalar test's operations (four at a time in the avx2 kernel's
+ * any-hit queries), so only triangles that test can hit take the whole test. Included
+ * by scene_query.c and each kernel's walks (bvh_kernel_*.c), which may compile
+ * visit_leaf for their instruction set (LEAF_TARGET). */
 #ifndef RT_BVH_LEAF_H
 #define RT_BVH_LEAF_H
 
@@ -159,16 +160,71 @@ __attribute__((always_inline)) static inline unsigned edge_pair(const rt_scene *
     pair_i outside = ((u < zero) | (v < zero) | (w < zero)) & ((u > zero) | (v > zero) | (w > zero));
     return (unsigned)(outside[0] == 0) | (unsigned)(outside[1] == 0) << 1;
 }
+
+#ifdef LEAF_QUADS
+/* The same for four triangles refs[0 .. 4) in 256-bit vectors (the avx2 kernel's leaves,
+ * LEAF_QUADS): bits 0 to 3. */
+typedef double quad_d __attribute__((vector_size(32)));
+typedef int64_t quad_i __attribute__((vector_size(32)));
+
+/* Vertex v of triangles t[0 .. 4) relative to the origin o, a coordinate per vector. */
+__attribute__((always_inline)) static inline LEAF_TARGET void quad_vertex(const rt_vec3 *p, const rt_triangle *const *t,
+                                                                          int v, rt_vec3 o, quad_d out[3])
+{
+    const rt_vec3 *a = &p[t[0]->v[v]], *b = &p[t[1]->v[v]], *c = &p[t[2]->v[v]], *d = &p[t[3]->v[v]];
+    pair_d xy_a = *(const pair_d_load *)&a->x, xy_b = *(const pair_d_load *)&b->x;
+    pair_d xy_c = *(const pair_d_load *)&c->x, xy_d = *(const pair_d_load *)&d->x;
+    quad_d ac = __builtin_shufflevector(xy_a, xy_c, 0, 1, 2, 3), bd = __builtin_shufflevector(xy_b, xy_d, 0, 1, 2, 3);
+    out[0] = __builtin_shufflevector(ac, bd, 0, 4, 2, 6) - o.x;
+    out[1] = __builtin_shufflevector(ac, bd, 1, 5, 3, 7) - o.y;
+    out[2] = (quad_d){a->z, b->z, c->z, d->z} - o.z;
+}
+
+__attribute__((always_inline)) static inline LEAF_TARGET unsigned edge_quad(const rt_scene *scene, const uint32_t *refs,
+                                                                            const rt_ray_setup *rs, int kx, int ky,
+                                                                            int kz)
+{
+    const rt_triangle *t[4] = {&scene->triangles[refs[0]], &scene->triangles[refs[1]], &scene->triangles[refs[2]],
+                               &scene->triangles[refs[3]]};
+    quad_d pa[3], pb[3], pc[3];
+    quad_vertex(scene->positions, t, 0, rs->ray.origin, pa);
+    quad_vertex(scene->positions, t, 1, rs->ray.origin, pb);
+    quad_vertex(scene->positions, t, 2, rs->ray.origin, pc);
+    quad_d ax = pa[kx] - rs->sx * pa[kz], ay = pa[ky] - rs->sy * pa[kz];
+    quad_d bx = pb[kx] - rs->sx * pb[kz], by = pb[ky] - rs->sy * pb[kz];
+    quad_d cx = pc[kx] - rs->sx * pc[kz], cy = pc[ky] - rs->sy * pc[kz];
+    quad_d u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax, zero = {0.0, 0.0, 0.0, 0.0};
+    quad_i outside = ((u < zero) | (v < zero) | (w < zero)) & ((u > zero) | (v > zero) | (w > zero));
+    return (unsigned)__builtin_ia32_movmskpd256((quad_d)~outside);
+}
+#endif
 #else
 #define EDGE_PAIRS 0
 #endif
 
-__attribute__((always_inline)) static inline bool leaf_loop(const rt_scene *scene, uint32_t first, uint32_t count,
-                                                            const rt_ray_setup *rs, bool any, rt_scene_hit *best,
-                                                            bool *found, int kx, int ky, int kz, bool bounded)
+__attribute__((always_inline)) static inline LEAF_TARGET bool leaf_loop(const rt_scene *scene, uint32_t first,
+                                                                        uint32_t count, const rt_ray_setup *rs,
+                                                                        bool any, rt_scene_hit *best, bool *found,
+                                                                        int kx, int ky, int kz, bool bounded)
 {
     const uint32_t *refs = scene->bvh.prim_refs;
     uint32_t i = first, end = first + count;
+#if EDGE_PAIRS && defined(LEAF_QUADS)
+    /* Any-hit queries take four triangles at a time: faster for shadow rays, where most
+     * triangles are rejected, but not for camera rays (docs/performance.md). */
+    for (; any && i < end; i += 4) {
+        uint32_t last = end - 1, n = end - i < 4 ? end - i : 4;
+        /* Lanes past the leaf's end repeat its last reference. */
+        uint32_t q[4] = {refs[i], refs[i + 1 < last ? i + 1 : last], refs[i + 2 < last ? i + 2 : last],
+                         refs[i + 3 < last ? i + 3 : last]};
+        unsigned maybe = (1u << n) - 1, tc = scene->triangle_count; /* quadrics take their own test */
+        if ((q[0] < tc) & (q[1] < tc) & (q[2] < tc) & (q[3] < tc)) maybe &= edge_quad(scene, q, rs, kx, ky, kz);
+        for (; maybe; maybe &= maybe - 1) {
+            consider(scene, q[__builtin_ctz(maybe)], rs, best, found, kx, ky, kz, bounded);
+            if (*found) return true;
+        }
+    }
+#endif
 #if EDGE_PAIRS
     for (; i + 2 <= end; i += 2) {
         unsigned maybe = 3; /* spheres and cylinders take their own test */
@@ -188,9 +244,10 @@ __attribute__((always_inline)) static inline bool leaf_loop(const rt_scene *scen
 }
 
 /* leaf_loop with one copy per axis permutation. */
-__attribute__((always_inline)) static inline bool leaf_permuted(const rt_scene *scene, uint32_t first, uint32_t count,
-                                                                const rt_ray_setup *rs, bool any, rt_scene_hit *best,
-                                                                bool *found, bool bounded)
+__attribute__((always_inline)) static inline LEAF_TARGET bool leaf_permuted(const rt_scene *scene, uint32_t first,
+                                                                            uint32_t count, const rt_ray_setup *rs,
+                                                                            bool any, rt_scene_hit *best, bool *found,
+                                                                            bool bounded)
 {
     bool swapped = rs->kx != (rs->kz + 1) % 3; /* see rt_intersect_prepare */
     switch (rs->kz * 2 + swapped) {
