@@ -39,7 +39,8 @@ __attribute__((always_inline)) static inline bool float_slab_axis(rt_real o, rt_
 {
     rt_real mag = __builtin_fabs(iv), o_mag = __builtin_fabs(o);
     /* (p - o') inv <= (p - o) inv needs o' >= o for inv > 0, o' <= o for inv < 0: the near
-     * planes' origin moves outwards (float_outward) along inv's sign, the far planes' against it. */
+     * planes' origin moves outwards (float_outward) along inv's sign, the far planes'
+     * against it. */
     rt_real pad = __builtin_copysign(o_mag * 0x1p-23 + 0x1p-126, iv);
     f->o_near[k] = (float)(o + pad);
     f->o_far[k] = (float)(o - pad);
