@@ -43,16 +43,20 @@ static void trace_group(const rt_scene *scene, group *g, bool any, rt_scene_hit 
 static void stream(const rt_scene *scene, const rt_ray_setup *rs, uint32_t n, bool any, rt_scene_hit *out, bool *found)
 {
     group groups[GROUPS];
-    for (int k = 0; k < GROUPS; k++) groups[k].n = 0;
+    uint32_t used = 0; /* the groups a ray has gone to: only those are set up and looked at */
     for (uint32_t i = 0; i < n; i++) {
         rt_vec3 d = rs[i].ray.direction;
-        group *g = &groups[rs[i].kz * 8 + (d.x < 0) + 2 * (d.y < 0) + 4 * (d.z < 0)];
+        uint32_t k = (uint32_t)rs[i].kz * 8 + (d.x < 0) + 2 * (d.y < 0) + 4 * (d.z < 0);
+        group *g = &groups[k];
+        if (!(used >> k & 1u)) g->n = 0, used |= 1u << k;
         g->rs[g->n] = &rs[i];
         g->index[g->n++] = i;
         if (g->n == RT_PACKET) trace_group(scene, g, any, out, found);
     }
-    for (int k = 0; k < GROUPS; k++)
-        if (groups[k].n > 0) trace_group(scene, &groups[k], any, out, found);
+    for (; used; used &= used - 1) {
+        group *g = &groups[__builtin_ctz(used)];
+        if (g->n > 0) trace_group(scene, g, any, out, found);
+    }
 }
 
 /* Packets need the float bounds and at least one primitive; otherwise one by one. */
