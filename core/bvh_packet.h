@@ -111,11 +111,10 @@ __attribute__((always_inline)) static inline PACKET_TARGET float pk_first(const 
     return m;
 }
 
-/* (a < 0 ? -a : a) lane by lane, as rt_abs does it (so -0 stays -0). */
-__attribute__((always_inline)) static inline PACKET_TARGET pk_d pk_abs(pk_d a)
+/* rt_magnitude lane by lane: the sign bit cleared. */
+__attribute__((always_inline)) static inline PACKET_TARGET pk_d pk_magnitude(pk_d a)
 {
-    pk_l neg = a < PK_ALLD(0.0);
-    return (pk_d)(((pk_l)-a & neg) | ((pk_l)a & ~neg));
+    return (pk_d)((pk_l)a & ~(pk_l)PK_ALLD(-0.0));
 }
 
 /* The watertight test of one triangle (vertices a, b, c) for the rays in mask, each lane
@@ -146,9 +145,10 @@ __attribute__((always_inline)) static inline PACKET_TARGET unsigned pk_triangle(
         lanes &= ~PK_MASKD(outside);
         if (!lanes) continue;
         pk_d det = (u + vv) + w;
-        pk_d extent_x = (pk_abs(ax) + pk_abs(bx)) + pk_abs(cx), extent_y = (pk_abs(ay) + pk_abs(by)) + pk_abs(cy);
+        pk_d extent_x = (pk_magnitude(ax) + pk_magnitude(bx)) + pk_magnitude(cx),
+             extent_y = (pk_magnitude(ay) + pk_magnitude(by)) + pk_magnitude(cy);
         pk_d t = ((u * (p->sz[v] * az) + vv * (p->sz[v] * bz)) + w * (p->sz[v] * cz)) / det;
-        pk_l edge_on = pk_abs(det) <= (extent_x * extent_y) * PK_ALLD(1e-12);
+        pk_l edge_on = pk_magnitude(det) <= (extent_x * extent_y) * PK_ALLD(1e-12);
         pk_l inside = (t > p->t_min[v]) & (t < p->t_max[v]) & (t - t == zero);
         lanes &= PK_MASKD(inside & ~edge_on);
         if (!lanes) continue;
@@ -232,7 +232,7 @@ static PACKET_TARGET unsigned pk_fill(pk_packet *p, const rt_ray_setup *const *r
     for (int v = 0; v < PACKET_ND; v++) {
         pk_l ok = (p->t_min[v] >= small) & (p->t_min[v] <= large);
         for (int k = 0; k < 3; k++) {
-            pk_d mag = pk_abs(inv[k][v]), o_mag = pk_abs(o[k][v]);
+            pk_d mag = pk_magnitude(inv[k][v]), o_mag = pk_magnitude(o[k][v]);
             ok &= (mag >= small) & (mag <= large) & (o_mag <= large) & ((ext + o_mag) * mag <= reach);
             pk_d pad = o_mag * step + tiny, up = o[k][v] + pad, down = o[k][v] - pad;
             pk_l pos = inv[k][v] > zero;
@@ -245,8 +245,8 @@ static PACKET_TARGET unsigned pk_fill(pk_packet *p, const rt_ray_setup *const *r
                 ifar[k][l] = (float)grow[i];
             }
         }
-        pk_d t_lo = p->t_min[v] - (pk_abs(p->t_min[v]) * step + tiny),
-             t_hi = p->t_max[v] + (pk_abs(p->t_max[v]) * step + tiny);
+        pk_d t_lo = p->t_min[v] - (pk_magnitude(p->t_min[v]) * step + tiny),
+             t_hi = p->t_max[v] + (pk_magnitude(p->t_max[v]) * step + tiny);
         for (int i = 0; i < PACKET_LANES_D; i++) {
             tmin[v * PACKET_LANES_D + i] = (float)t_lo[i];
             tmax[v * PACKET_LANES_D + i] = (float)t_hi[i];

@@ -6,7 +6,7 @@ __attribute__((always_inline)) static inline rt_ray_setup prepare(rt_ray ray, bo
     rt_ray_setup rs;
     rs.ray = ray;
     rt_vec3 d = ray.direction;
-    rt_real ax = rt_abs(d.x), ay = rt_abs(d.y), az = rt_abs(d.z);
+    rt_real ax = rt_magnitude(d.x), ay = rt_magnitude(d.y), az = rt_magnitude(d.z);
     rs.kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
     rs.kx = (rs.kz + 1) % 3;
     rs.ky = (rs.kx + 1) % 3;

@@ -90,8 +90,8 @@ __attribute__((always_inline)) static inline bool rt_triangle_cross(const rt_ray
     /* A ray (nearly) in the triangle's plane sees it edge-on: u, v, w and det are then
      * rounding noise of the size of the 2D coordinates squared times 1e-16, and t would be
      * noise too. Such rays miss. */
-    rt_real extent_x = tri_add(bounded, tri_add(bounded, rt_abs(ax), rt_abs(bx)), rt_abs(cx));
-    rt_real extent_y = tri_add(bounded, tri_add(bounded, rt_abs(ay), rt_abs(by)), rt_abs(cy));
+    rt_real extent_x = tri_add(bounded, tri_add(bounded, rt_magnitude(ax), rt_magnitude(bx)), rt_magnitude(cx));
+    rt_real extent_y = tri_add(bounded, tri_add(bounded, rt_magnitude(ay), rt_magnitude(by)), rt_magnitude(cy));
 #ifdef RT_REAL_FIXED
     /* In Q32.32 the noise is absolute: each of the six sheared coordinates is off by up
      * to half an lsb and each product rounds by another half, so det is off by at most
@@ -100,7 +100,7 @@ __attribute__((always_inline)) static inline bool rt_triangle_cross(const rt_ray
 #else
     rt_real edge_on = rt_mul(rt_mul(extent_x, extent_y), RT_C(1e-12));
 #endif
-    if (rt_abs(det) <= edge_on) return false;
+    if (rt_magnitude(det) <= edge_on) return false;
     rt_real t = rt_dot3_div(u, rt_mul(rs->sz, az), v, rt_mul(rs->sz, bz), w, rt_mul(rs->sz, cz), det);
     /* A saturated t (Q32.32) is an overflow, not a distance, whatever the interval says. */
     if (!(t > rs->ray.t_min && t < rs->ray.t_max) || !rt_is_finite(t)) return false;

@@ -18,6 +18,14 @@ static inline rt_real rt_min(rt_real a, rt_real b) { return a < b ? a : b; }
 static inline rt_real rt_max(rt_real a, rt_real b) { return a > b ? a : b; }
 static inline rt_real rt_clamp(rt_real x, rt_real lo, rt_real hi) { return rt_min(rt_max(x, lo), hi); }
 static inline rt_real rt_abs(rt_real a) { return a < RT_ZERO ? rt_neg(a) : a; }
+/* |a| for comparisons (and sums and products that are only compared): in the double
+ * build the sign bit cleared, one instruction instead of rt_abs's choice, which gives +0
+ * where rt_abs keeps -0; no comparison tells the two apart. */
+#ifdef RT_REAL_FIXED
+static inline rt_real rt_magnitude(rt_real a) { return rt_abs(a); }
+#else
+static inline rt_real rt_magnitude(rt_real a) { return __builtin_fabs(a); }
+#endif
 
 /* Elementary functions, implemented by the backend without libm (see docs/determinism.md). */
 rt_real rt_sin(rt_real radians);
