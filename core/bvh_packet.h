@@ -211,60 +211,70 @@ __attribute__((noinline)) static PACKET_TARGET unsigned pk_leaf(const rt_scene *
     }
 }
 
+typedef float pk_half __attribute__((vector_size(PACKET_VEC / 2))); /* a double vector's lanes as floats */
+
+/* The float vector of packet lanes [w * PACKET_LANES_F, (w + 1) * PACKET_LANES_F) of a
+ * quantity held in double vectors x: each lane rounded to float as a cast does. */
+__attribute__((always_inline)) static inline PACKET_TARGET pk_f pk_floats(const pk_d x[PACKET_ND], int w)
+{
+    pk_half lo = __builtin_convertvector(x[2 * w], pk_half), hi = __builtin_convertvector(x[2 * w + 1], pk_half);
+#if PACKET_VEC == 32
+    return __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7);
+#else
+    return __builtin_shufflevector(lo, hi, 0, 1, 2, 3);
+#endif
+}
+
+/* The lanes of double vector v from a field of the lanes' rays r. */
+#if PACKET_VEC == 32
+#define PK_GATHER(r, field) ((pk_d){(r)[0]->field, (r)[1]->field, (r)[2]->field, (r)[3]->field})
+#else
+#define PK_GATHER(r, field) ((pk_d){(r)[0]->field, (r)[1]->field})
+#endif
+
 /* Fills the packet from the n <= RT_PACKET rays (one octant and permutation); lanes from
  * n on repeat ray 0. Returns the lanes the float bounds can take (float_slab_prepare,
  * with its roundings, lane by lane). */
 static PACKET_TARGET unsigned pk_fill(pk_packet *p, const rt_ray_setup *const *rs, uint32_t n, rt_real extent)
 {
-    pk_d o[3][PACKET_ND], inv[3][PACKET_ND];
-    for (int l = 0; l < RT_PACKET; l++) {
-        const rt_ray_setup *r = rs[(uint32_t)l < n ? (uint32_t)l : 0];
-        int v = l / PACKET_LANES_D, i = l % PACKET_LANES_D;
-        o[0][v][i] = r->ray.origin.x, o[1][v][i] = r->ray.origin.y, o[2][v][i] = r->ray.origin.z;
-        inv[0][v][i] = r->inv_direction.x, inv[1][v][i] = r->inv_direction.y, inv[2][v][i] = r->inv_direction.z;
-        p->sx[v][i] = r->sx, p->sy[v][i] = r->sy, p->sz[v][i] = r->sz;
-        p->t_min[v][i] = r->ray.t_min, p->t_max[v][i] = r->ray.t_max;
-    }
+    pk_d inv[3][PACKET_ND], near[3][PACKET_ND], far[3][PACKET_ND], shrink[3][PACKET_ND], grow[3][PACKET_ND];
+    pk_d t_lo[PACKET_ND], t_hi[PACKET_ND];
     const pk_d small = PK_ALLD(0x1p-100), large = PK_ALLD(0x1p100), reach = PK_ALLD(0x1p120), ext = PK_ALLD(extent);
     const pk_d step = PK_ALLD(0x1p-23), tiny = PK_ALLD(0x1p-126), zero = PK_ALLD(0.0);
     unsigned usable = 0;
-    float on[3][RT_PACKET], of[3][RT_PACKET], in[3][RT_PACKET], ifar[3][RT_PACKET], tmin[RT_PACKET], tmax[RT_PACKET];
     for (int v = 0; v < PACKET_ND; v++) {
+        const rt_ray_setup *r[PACKET_LANES_D];
+        for (int i = 0; i < PACKET_LANES_D; i++) {
+            uint32_t l = (uint32_t)(v * PACKET_LANES_D + i);
+            r[i] = rs[l < n ? l : 0];
+        }
+        p->origin[0][v] = PK_GATHER(r, ray.origin.x), p->origin[1][v] = PK_GATHER(r, ray.origin.y);
+        p->origin[2][v] = PK_GATHER(r, ray.origin.z);
+        inv[0][v] = PK_GATHER(r, inv_direction.x), inv[1][v] = PK_GATHER(r, inv_direction.y);
+        inv[2][v] = PK_GATHER(r, inv_direction.z);
+        p->sx[v] = PK_GATHER(r, sx), p->sy[v] = PK_GATHER(r, sy), p->sz[v] = PK_GATHER(r, sz);
+        p->t_min[v] = PK_GATHER(r, ray.t_min), p->t_max[v] = PK_GATHER(r, ray.t_max);
         pk_l ok = (p->t_min[v] >= small) & (p->t_min[v] <= large);
         for (int k = 0; k < 3; k++) {
-            pk_d mag = pk_magnitude(inv[k][v]), o_mag = pk_magnitude(o[k][v]);
+            pk_d o = p->origin[k][v], mag = pk_magnitude(inv[k][v]), o_mag = pk_magnitude(o);
             ok &= (mag >= small) & (mag <= large) & (o_mag <= large) & ((ext + o_mag) * mag <= reach);
-            pk_d pad = o_mag * step + tiny, up = o[k][v] + pad, down = o[k][v] - pad;
+            pk_d pad = o_mag * step + tiny, up = o + pad, down = o - pad;
             pk_l pos = inv[k][v] > zero;
-            pk_d near = (pk_d)(((pk_l)up & pos) | ((pk_l)down & ~pos)),
-                 far = (pk_d)(((pk_l)down & pos) | ((pk_l)up & ~pos));
-            pk_d shrink = inv[k][v] * PK_ALLD(1.0 - 0x1p-21), grow = inv[k][v] * PK_ALLD(1.0 + 0x1p-21);
-            for (int i = 0; i < PACKET_LANES_D; i++) {
-                int l = v * PACKET_LANES_D + i;
-                on[k][l] = (float)near[i], of[k][l] = (float)far[i], in[k][l] = (float)shrink[i],
-                ifar[k][l] = (float)grow[i];
-            }
+            near[k][v] = (pk_d)(((pk_l)up & pos) | ((pk_l)down & ~pos));
+            far[k][v] = (pk_d)(((pk_l)down & pos) | ((pk_l)up & ~pos));
+            shrink[k][v] = inv[k][v] * PK_ALLD(1.0 - 0x1p-21), grow[k][v] = inv[k][v] * PK_ALLD(1.0 + 0x1p-21);
         }
-        pk_d t_lo = p->t_min[v] - (pk_magnitude(p->t_min[v]) * step + tiny),
-             t_hi = p->t_max[v] + (pk_magnitude(p->t_max[v]) * step + tiny);
-        for (int i = 0; i < PACKET_LANES_D; i++) {
-            tmin[v * PACKET_LANES_D + i] = (float)t_lo[i];
-            tmax[v * PACKET_LANES_D + i] = (float)t_hi[i];
-        }
+        t_lo[v] = p->t_min[v] - (pk_magnitude(p->t_min[v]) * step + tiny);
+        t_hi[v] = p->t_max[v] + (pk_magnitude(p->t_max[v]) * step + tiny);
         usable |= PK_MASKD(ok) << (v * PACKET_LANES_D);
     }
-    for (int v = 0; v < PACKET_NF; v++) {
+    for (int w = 0; w < PACKET_NF; w++) {
         for (int k = 0; k < 3; k++) {
-            __builtin_memcpy(&p->o_near[k][v], &on[k][v * PACKET_LANES_F], sizeof(pk_f));
-            __builtin_memcpy(&p->o_far[k][v], &of[k][v * PACKET_LANES_F], sizeof(pk_f));
-            __builtin_memcpy(&p->inv_near[k][v], &in[k][v * PACKET_LANES_F], sizeof(pk_f));
-            __builtin_memcpy(&p->inv_far[k][v], &ifar[k][v * PACKET_LANES_F], sizeof(pk_f));
+            p->o_near[k][w] = pk_floats(near[k], w), p->o_far[k][w] = pk_floats(far[k], w);
+            p->inv_near[k][w] = pk_floats(shrink[k], w), p->inv_far[k][w] = pk_floats(grow[k], w);
         }
-        __builtin_memcpy(&p->t_min_f[v], &tmin[v * PACKET_LANES_F], sizeof(pk_f));
-        __builtin_memcpy(&p->best[v], &tmax[v * PACKET_LANES_F], sizeof(pk_f));
+        p->t_min_f[w] = pk_floats(t_lo, w), p->best[w] = pk_floats(t_hi, w);
     }
-    for (int k = 0; k < 3; k++)
-        for (int v = 0; v < PACKET_ND; v++) p->origin[k][v] = o[k][v];
     rt_vec3 d = rs[0]->ray.direction;
     const size_t row = sizeof((const rt_bvh_node *)0)->box[0];
     p->near[0] = d.x < 0 ? 3 * row : 0, p->near[1] = d.y < 0 ? 4 * row : row, p->near[2] = d.z < 0 ? 5 * row : 2 * row;
