@@ -58,29 +58,14 @@ typedef struct {
     pk_f t[PACKET_NF];
 } pk_entry;
 
-/* The smallest of the lanes of v where `in` is set (+infinity for none). */
-__attribute__((always_inline)) static inline PACKET_TARGET float pk_min(pk_f v, pk_i in)
-{
-    const pk_f inf = PK_ALLF(__builtin_inff());
-    v = (pk_f)(((pk_i)v & in) | ((pk_i)inf & ~in));
-#if PACKET_VEC == 32
-    v = PK_MINF(v, PK_SHUFFLE(v, 4, 5, 6, 7, 0, 1, 2, 3));
-    v = PK_MINF(v, PK_SHUFFLE(v, 2, 3, 0, 1, 6, 7, 4, 5));
-    v = PK_MINF(v, PK_SHUFFLE(v, 1, 0, 3, 2, 5, 4, 7, 6));
-#else
-    v = PK_MINF(v, PK_SHUFFLE(v, 2, 3, 0, 1));
-    v = PK_MINF(v, PK_SHUFFLE(v, 1, 0, 3, 2));
-#endif
-    return v[0];
-}
-
 /* Tests child c of `node` for the packet's rays: returns the lanes that enter its box,
- * with their entry distances (bounded from below) in t and the lanes' test in in. */
+ * with their entry distances (bounded from below) in t, +infinity in the other lanes. */
 __attribute__((always_inline)) static inline PACKET_TARGET unsigned pk_child(const pk_packet *p,
                                                                              const rt_bvh_node *node, int c,
-                                                                             pk_f t[PACKET_NF], pk_i in[PACKET_NF])
+                                                                             pk_f t[PACKET_NF])
 {
     const char *b = (const char *)node->box;
+    const pk_i inf = (pk_i)PK_ALLF(__builtin_inff());
     pk_f nx = PK_ALLF(((const float *)(b + p->near[0]))[c]), ny = PK_ALLF(((const float *)(b + p->near[1]))[c]);
     pk_f nz = PK_ALLF(((const float *)(b + p->near[2]))[c]), fx = PK_ALLF(((const float *)(b + p->far[0]))[c]);
     pk_f fy = PK_ALLF(((const float *)(b + p->far[1]))[c]), fz = PK_ALLF(((const float *)(b + p->far[2]))[c]);
@@ -92,23 +77,27 @@ __attribute__((always_inline)) static inline PACKET_TARGET unsigned pk_child(con
         t1 = PK_MINF(t1, (fy - p->o_far[1][v]) * p->inv_far[1][v]);
         t0 = PK_MAXF(t0, (nz - p->o_near[2][v]) * p->inv_near[2][v]);
         t1 = PK_MINF(t1, (fz - p->o_far[2][v]) * p->inv_far[2][v]);
-        in[v] = t0 <= t1;
-        t[v] = t0;
-        hits |= PK_MASKF(in[v]) << (v * PACKET_LANES_F);
+        pk_i in = t0 <= t1;
+        t[v] = (pk_f)(((pk_i)t0 & in) | (inf & ~in));
+        hits |= PK_MASKF(in) << (v * PACKET_LANES_F);
     }
     return hits;
 }
 
-/* The smallest entry distance of the lanes that enter a child: the order of children. */
-__attribute__((always_inline)) static inline PACKET_TARGET float pk_first(const pk_f t[PACKET_NF],
-                                                                          const pk_i in[PACKET_NF])
+/* The smallest of a child's entry distances (pk_child's t): the order of children. */
+__attribute__((always_inline)) static inline PACKET_TARGET float pk_first(const pk_f t[PACKET_NF])
 {
-    float m = pk_min(t[0], in[0]);
-    for (int v = 1; v < PACKET_NF; v++) {
-        float x = pk_min(t[v], in[v]);
-        if (x < m) m = x;
-    }
-    return m;
+    pk_f v = t[0];
+    for (int w = 1; w < PACKET_NF; w++) v = PK_MINF(v, t[w]);
+#if PACKET_VEC == 32
+    v = PK_MINF(v, PK_SHUFFLE(v, 4, 5, 6, 7, 0, 1, 2, 3));
+    v = PK_MINF(v, PK_SHUFFLE(v, 2, 3, 0, 1, 6, 7, 4, 5));
+    v = PK_MINF(v, PK_SHUFFLE(v, 1, 0, 3, 2, 5, 4, 7, 6));
+#else
+    v = PK_MINF(v, PK_SHUFFLE(v, 2, 3, 0, 1));
+    v = PK_MINF(v, PK_SHUFFLE(v, 1, 0, 3, 2));
+#endif
+    return v[0];
 }
 
 /* rt_magnitude lane by lane: the sign bit cleared. */
@@ -302,17 +291,16 @@ PACKET_TARGET unsigned PACKET_WALK(const rt_scene *scene, const rt_ray_setup *co
         while (count == 0) {
             const rt_bvh_node *node = &nodes[child];
             pk_f t[RT_BVH_WIDTH][PACKET_NF];
-            pk_i in[RT_BVH_WIDTH][PACKET_NF];
             unsigned hits[RT_BVH_WIDTH];
             int order[RT_BVH_WIDTH], n_hit = 0; /* the hit children, nearest first */
             for (int c = 0; c < RT_BVH_WIDTH; c++) {
-                hits[c] = pk_child(&p, node, c, t[c], in[c]) & mask;
+                hits[c] = pk_child(&p, node, c, t[c]) & mask;
                 if (hits[c]) order[n_hit++] = c;
             }
             if (!n_hit) goto pop;
             if (n_hit > 1) {
                 float first[RT_BVH_WIDTH];
-                for (int i = 0; i < n_hit; i++) first[order[i]] = pk_first(t[order[i]], in[order[i]]);
+                for (int i = 0; i < n_hit; i++) first[order[i]] = pk_first(t[order[i]]);
                 for (int i = 1; i < n_hit; i++) {
                     int c = order[i], j = i;
                     for (; j > 0 && first[order[j - 1]] > first[c]; j--) order[j] = order[j - 1];
