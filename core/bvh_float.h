@@ -28,7 +28,7 @@ typedef struct {
  * 2^-126). Unlike rt_bound_above and rt_bound_below, no branch. */
 static inline float float_outward(double x, bool up)
 {
-    double pad = __builtin_fabs(x) * 0x1p-23 + 0x1p-126;
+    double pad = rt_magnitude(x) * 0x1p-23 + 0x1p-126;
     return (float)(up ? x + pad : x - pad);
 }
 
@@ -37,7 +37,7 @@ static inline float float_outward(double x, bool up)
 __attribute__((always_inline)) static inline bool float_slab_axis(rt_real o, rt_real iv, rt_real extent, int k,
                                                                   float_slab *f)
 {
-    rt_real mag = __builtin_fabs(iv), o_mag = __builtin_fabs(o);
+    rt_real mag = rt_magnitude(iv), o_mag = rt_magnitude(o);
     /* (p - o') inv <= (p - o) inv needs o' >= o for inv > 0, o' <= o for inv < 0: the near
      * planes' origin moves outwards (float_outward) along inv's sign, the far planes'
      * against it. */
