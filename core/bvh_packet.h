@@ -106,81 +106,84 @@ __attribute__((always_inline)) static inline PACKET_TARGET pk_d pk_magnitude(pk_
     return (pk_d)((pk_l)a & ~(pk_l)PK_ALLD(-0.0));
 }
 
-/* The watertight test of one triangle (vertices a, b, c) for the rays in mask, each lane
- * by rt_intersect_triangle_axes's operations; every hit goes through the tie rule of
- * `loses_to` for its ray. Returns the lanes whose nearest hit changed. */
-__attribute__((always_inline)) static inline PACKET_TARGET unsigned pk_triangle(const pk_packet *p, uint32_t prim,
+/* The watertight test of one triangle (vertices a, b, c) for the rays in `lanes` of
+ * double vector v, each lane by rt_intersect_triangle_axes's operations; every hit goes
+ * through the tie rule of `loses_to` for its ray. Returns the packet lanes whose nearest
+ * hit changed. */
+__attribute__((always_inline)) static inline PACKET_TARGET unsigned pk_triangle(const pk_packet *p, int v,
+                                                                                unsigned lanes, uint32_t prim,
                                                                                 const rt_vec3 *va, const rt_vec3 *vb,
-                                                                                const rt_vec3 *vc, unsigned mask,
-                                                                                rt_scene_hit *out, bool *found, int kx,
-                                                                                int ky, int kz)
+                                                                                const rt_vec3 *vc, rt_scene_hit *out,
+                                                                                bool *found, int kx, int ky, int kz)
 {
     const rt_real a[3] = {va->x, va->y, va->z}, b[3] = {vb->x, vb->y, vb->z}, c[3] = {vc->x, vc->y, vc->z};
     const pk_d zero = PK_ALLD(0.0);
     unsigned improved = 0;
-    for (int v = 0; v < PACKET_ND; v++) {
-        unsigned lanes = mask >> (v * PACKET_LANES_D) & ((1u << PACKET_LANES_D) - 1);
-        if (!lanes) continue;
-        pk_d az = PK_ALLD(a[kz]) - p->origin[kz][v], bz = PK_ALLD(b[kz]) - p->origin[kz][v];
-        pk_d cz = PK_ALLD(c[kz]) - p->origin[kz][v];
-        pk_d ax = (PK_ALLD(a[kx]) - p->origin[kx][v]) - p->sx[v] * az;
-        pk_d ay = (PK_ALLD(a[ky]) - p->origin[ky][v]) - p->sy[v] * az;
-        pk_d bx = (PK_ALLD(b[kx]) - p->origin[kx][v]) - p->sx[v] * bz;
-        pk_d by = (PK_ALLD(b[ky]) - p->origin[ky][v]) - p->sy[v] * bz;
-        pk_d cx = (PK_ALLD(c[kx]) - p->origin[kx][v]) - p->sx[v] * cz;
-        pk_d cy = (PK_ALLD(c[ky]) - p->origin[ky][v]) - p->sy[v] * cz;
-        pk_d u = cx * by - cy * bx, vv = ax * cy - ay * cx, w = bx * ay - by * ax;
-        pk_l outside = ((u < zero) | (vv < zero) | (w < zero)) & ((u > zero) | (vv > zero) | (w > zero));
-        lanes &= ~PK_MASKD(outside);
-        if (!lanes) continue;
-        pk_d det = (u + vv) + w;
-        pk_d extent_x = (pk_magnitude(ax) + pk_magnitude(bx)) + pk_magnitude(cx),
-             extent_y = (pk_magnitude(ay) + pk_magnitude(by)) + pk_magnitude(cy);
-        pk_d t = ((u * (p->sz[v] * az) + vv * (p->sz[v] * bz)) + w * (p->sz[v] * cz)) / det;
-        pk_l edge_on = pk_magnitude(det) <= (extent_x * extent_y) * PK_ALLD(1e-12);
-        pk_l inside = (t > p->t_min[v]) & (t < p->t_max[v]) & (t - t == zero);
-        lanes &= PK_MASKD(inside & ~edge_on);
-        if (!lanes) continue;
-        pk_d b1 = vv / det, b2 = w / det;
-        for (; lanes; lanes &= lanes - 1) {
-            int i = __builtin_ctz(lanes), l = v * PACKET_LANES_D + i;
-            rt_scene_hit *best = &out[l];
-            if (loses_to(best, found[l], t[i], prim)) continue;
-            best->hit.t = t[i];
-            best->hit.b1 = b1[i];
-            best->hit.b2 = b2[i];
-            best->hit.part = RT_PART_SURFACE;
-            best->prim = prim;
-            found[l] = true;
-            improved |= 1u << l;
-        }
+    pk_d az = PK_ALLD(a[kz]) - p->origin[kz][v], bz = PK_ALLD(b[kz]) - p->origin[kz][v];
+    pk_d cz = PK_ALLD(c[kz]) - p->origin[kz][v];
+    pk_d ax = (PK_ALLD(a[kx]) - p->origin[kx][v]) - p->sx[v] * az;
+    pk_d ay = (PK_ALLD(a[ky]) - p->origin[ky][v]) - p->sy[v] * az;
+    pk_d bx = (PK_ALLD(b[kx]) - p->origin[kx][v]) - p->sx[v] * bz;
+    pk_d by = (PK_ALLD(b[ky]) - p->origin[ky][v]) - p->sy[v] * bz;
+    pk_d cx = (PK_ALLD(c[kx]) - p->origin[kx][v]) - p->sx[v] * cz;
+    pk_d cy = (PK_ALLD(c[ky]) - p->origin[ky][v]) - p->sy[v] * cz;
+    pk_d u = cx * by - cy * bx, vv = ax * cy - ay * cx, w = bx * ay - by * ax;
+    pk_l outside = ((u < zero) | (vv < zero) | (w < zero)) & ((u > zero) | (vv > zero) | (w > zero));
+    lanes &= ~PK_MASKD(outside);
+    if (!lanes) return 0;
+    pk_d det = (u + vv) + w;
+    pk_d extent_x = (pk_magnitude(ax) + pk_magnitude(bx)) + pk_magnitude(cx),
+         extent_y = (pk_magnitude(ay) + pk_magnitude(by)) + pk_magnitude(cy);
+    pk_d t = ((u * (p->sz[v] * az) + vv * (p->sz[v] * bz)) + w * (p->sz[v] * cz)) / det;
+    pk_l edge_on = pk_magnitude(det) <= (extent_x * extent_y) * PK_ALLD(1e-12);
+    pk_l inside = (t > p->t_min[v]) & (t < p->t_max[v]) & (t - t == zero);
+    lanes &= PK_MASKD(inside & ~edge_on);
+    if (!lanes) return 0;
+    pk_d b1 = vv / det, b2 = w / det;
+    for (; lanes; lanes &= lanes - 1) {
+        int i = __builtin_ctz(lanes), l = v * PACKET_LANES_D + i;
+        rt_scene_hit *best = &out[l];
+        if (loses_to(best, found[l], t[i], prim)) continue;
+        best->hit.t = t[i];
+        best->hit.b1 = b1[i];
+        best->hit.b2 = b2[i];
+        best->hit.part = RT_PART_SURFACE;
+        best->prim = prim;
+        found[l] = true;
+        improved |= 1u << l;
     }
     return improved;
 }
 
 /* The references of a leaf for the rays in mask; returns the lanes whose nearest hit
- * changed. With `any`, a lane stops at its first hit. */
+ * changed. With `any`, a lane stops at its first hit. Each double vector of rays goes
+ * through the whole leaf in turn, so a vector with no ray in mask is passed over once,
+ * not at every reference (and the avx2 kernel spills less); each ray meets the
+ * references in the same order either way. */
 __attribute__((always_inline)) static inline PACKET_TARGET unsigned pk_leaf_loop(
     const rt_scene *scene, const pk_packet *p, const rt_ray_setup *const *rs, uint32_t first, uint32_t count,
     unsigned mask, bool any, rt_scene_hit *out, bool *found, int kx, int ky, int kz)
 {
     const uint32_t *refs = scene->bvh.prim_refs;
     unsigned improved = 0;
-    for (uint32_t i = first; i < first + count && mask; i++) {
-        uint32_t prim = refs[i];
-        unsigned got = 0;
-        if (prim < scene->triangle_count) {
-            const rt_triangle *tri = &scene->triangles[prim];
-            got = pk_triangle(p, prim, &scene->positions[tri->v[0]], &scene->positions[tri->v[1]],
-                              &scene->positions[tri->v[2]], mask, out, found, kx, ky, kz);
-        } else {
-            for (unsigned m = mask; m; m &= m - 1) {
-                int l = __builtin_ctz(m);
-                if (consider(scene, prim, rs[l], &out[l], &found[l], kx, ky, kz, false)) got |= 1u << l;
+    for (int v = 0; v < PACKET_ND; v++) {
+        unsigned lanes = mask >> (v * PACKET_LANES_D) & ((1u << PACKET_LANES_D) - 1);
+        for (uint32_t i = first; i < first + count && lanes; i++) {
+            uint32_t prim = refs[i];
+            unsigned got = 0;
+            if (prim < scene->triangle_count) {
+                const rt_triangle *tri = &scene->triangles[prim];
+                got = pk_triangle(p, v, lanes, prim, &scene->positions[tri->v[0]], &scene->positions[tri->v[1]],
+                                  &scene->positions[tri->v[2]], out, found, kx, ky, kz);
+            } else {
+                for (unsigned m = lanes; m; m &= m - 1) {
+                    int l = v * PACKET_LANES_D + __builtin_ctz(m);
+                    if (consider(scene, prim, rs[l], &out[l], &found[l], kx, ky, kz, false)) got |= 1u << l;
+                }
             }
+            improved |= got;
+            if (any) lanes &= ~(got >> (v * PACKET_LANES_D));
         }
-        improved |= got;
-        if (any) mask &= ~got;
     }
     return improved;
 }
