@@ -106,10 +106,10 @@ __attribute__((always_inline)) static inline PACKET_TARGET pk_d pk_magnitude(pk_
     return (pk_d)((pk_l)a & ~(pk_l)PK_ALLD(-0.0));
 }
 
-/* The watertight test of one triangle (vertices a, b, c) for the rays in `lanes` of
- * double vector v, each lane by rt_intersect_triangle_axes's operations; every hit goes
- * through the tie rule of `loses_to` for its ray. Returns the packet lanes whose nearest
- * hit changed. */
+/* The watertight test of one triangle (vertices a, b, c) for the rays in `lanes` (bit i:
+ * lane i) of double vector v, each lane by rt_intersect_triangle_axes's operations;
+ * every hit goes through the tie rule of `loses_to` for its ray. Returns the lanes of v
+ * whose nearest hit changed. */
 __attribute__((always_inline)) static inline PACKET_TARGET unsigned pk_triangle(const pk_packet *p, int v,
                                                                                 unsigned lanes, uint32_t prim,
                                                                                 const rt_vec3 *va, const rt_vec3 *vb,
@@ -150,7 +150,7 @@ __attribute__((always_inline)) static inline PACKET_TARGET unsigned pk_triangle(
         best->hit.part = RT_PART_SURFACE;
         best->prim = prim;
         found[l] = true;
-        improved |= 1u << l;
+        improved |= 1u << i;
     }
     return improved;
 }
@@ -177,12 +177,12 @@ __attribute__((always_inline)) static inline PACKET_TARGET unsigned pk_leaf_loop
                                   &scene->positions[tri->v[2]], out, found, kx, ky, kz);
             } else {
                 for (unsigned m = lanes; m; m &= m - 1) {
-                    int l = v * PACKET_LANES_D + __builtin_ctz(m);
-                    if (consider(scene, prim, rs[l], &out[l], &found[l], kx, ky, kz, false)) got |= 1u << l;
+                    int lane = __builtin_ctz(m), l = v * PACKET_LANES_D + lane;
+                    if (consider(scene, prim, rs[l], &out[l], &found[l], kx, ky, kz, false)) got |= 1u << lane;
                 }
             }
-            improved |= got;
-            if (any) lanes &= ~(got >> (v * PACKET_LANES_D));
+            improved |= got << (v * PACKET_LANES_D);
+            if (any) lanes &= ~got;
         }
     }
     return improved;
