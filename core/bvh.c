@@ -1,4 +1,4 @@
-/* Binned-SAH BVH build on the caller's workers, collapsed into a 4-wide tree
+/* Binned-SAH BVH build on the caller's workers, collapsed into a wide tree
  * (bvh_collapse.c); see bvh.h (queries: scene_query.c). */
 #include "bvh.h"
 #include "bvh_bin.h"

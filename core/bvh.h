@@ -1,5 +1,5 @@
 /* Bounding volume hierarchy over a scene's primitives: a binned SAH build (bvh.c)
- * collapsed into a 4-wide tree (bvh_collapse.c) that the scene queries walk
+ * collapsed into a wide tree (RT_BVH_WIDTH children a node, bvh_collapse.c) that the scene queries walk
  * (scene_query.h). */
 #ifndef RT_BVH_H
 #define RT_BVH_H
@@ -7,9 +7,24 @@
 #include "scene.h"
 #include "workers.h"
 
-/* Deepest binary tree the builder makes (the 4-wide tree is at most as deep);
+/* Deepest binary tree the builder makes (the wide tree is at most as deep);
  * traversal stacks are sized by it. */
 #define RT_BVH_MAX_DEPTH 64
+
+/* The slots of a wide node, and every pair of them (a < b): the cases of the walks'
+ * switches over one or two hit children. */
+/* clang-format off */
+#if RT_BVH_WIDTH == 8
+#define RT_BVH_SLOTS(X) X(0) X(1) X(2) X(3) X(4) X(5) X(6) X(7)
+#define RT_BVH_SLOT_PAIRS(X) \
+    X(0, 1) X(0, 2) X(0, 3) X(0, 4) X(0, 5) X(0, 6) X(0, 7) X(1, 2) X(1, 3) X(1, 4) X(1, 5) X(1, 6) X(1, 7) \
+    X(2, 3) X(2, 4) X(2, 5) X(2, 6) X(2, 7) X(3, 4) X(3, 5) X(3, 6) X(3, 7) X(4, 5) X(4, 6) X(4, 7) \
+    X(5, 6) X(5, 7) X(6, 7)
+#else
+#define RT_BVH_SLOTS(X) X(0) X(1) X(2) X(3)
+#define RT_BVH_SLOT_PAIRS(X) X(0, 1) X(0, 2) X(0, 3) X(1, 2) X(1, 3) X(2, 3)
+#endif
+/* clang-format on */
 
 /* How the build divides its work into jobs. Every plan gives the same tree, bit for bit:
  * a plan only decides which parts may run at once. */

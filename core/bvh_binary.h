@@ -1,5 +1,5 @@
 /* The binary tree the SAH build makes in scratch (bvh.c), before it is collapsed into
- * the 4-wide tree the queries walk (bvh_collapse.c). Core-internal. */
+ * the wide tree the queries walk (bvh_collapse.c). Core-internal. */
 #ifndef RT_BVH_BINARY_H
 #define RT_BVH_BINARY_H
 
@@ -21,7 +21,7 @@ typedef struct {
 /* Stores b rounded outwards on the tree's grid. */
 void rt_bvh_store_box(rt_bound box[6], rt_aabb b, int grid);
 
-/* Collapses the binary tree at bin (root node 0, `inner` inner nodes) into the 4-wide
+/* Collapses the binary tree at bin (root node 0, `inner` inner nodes) into the wide
  * tree on bvh->grid: bvh->nodes (in the arena, 64-byte aligned), node_count, depth. */
 rt_status rt_bvh_collapse(const rt_bin_node *bin, uint32_t inner, rt_bvh *bvh, rt_arena *arena);
 /* The tree of a scene without primitives: a root whose slots are all empty. */

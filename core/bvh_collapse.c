@@ -1,4 +1,4 @@
-/* The binary SAH tree (bvh_binary.h) collapsed into the 4-wide tree of bvh.h. */
+/* The binary SAH tree (bvh_binary.h) collapsed into the wide tree of bvh.h. */
 #include "bvh_binary.h"
 #include "invariant.h"
 
@@ -112,7 +112,7 @@ static uint32_t collapse(const rt_bin_node *bin, int grid, rt_bvh_node *wide, co
 
 rt_status rt_bvh_collapse(const rt_bin_node *bin, uint32_t inner, rt_bvh *bvh, rt_arena *arena)
 {
-    /* At most one wide node per binary inner node, or one. Each is two whole cache lines. */
+    /* At most one wide node per binary inner node, or one. Each fills whole cache lines. */
     bvh->nodes = rt_arena_alloc_aligned(arena, ((size_t)inner + 1) * sizeof(rt_bvh_node), 64);
     collapse_task *stack = RT_NEW_ARRAY(arena, collapse_task, COLLAPSE_STACK);
     if (!bvh->nodes || !stack) return RT_ERR_NOMEM;

@@ -1,5 +1,5 @@
-/* The double build's box tests for most rays on x86 (SSE2, its baseline): a node's four
- * children are tested in single precision, four per register, against bounds that make
+/* The double build's box tests for most rays on x86 (SSE2, its baseline): a node's eight
+ * children are tested in single precision, four or eight per register, against bounds that make
  * the test conservative. Rays it cannot take (see float_slab_prepare) walk with the
  * general test of bvh_slab.h. Included by scene_query.c, the stream queries
  * (bvh_stream.c) and each kernel's walks (bvh_kernel_*.c). */
@@ -11,7 +11,6 @@
 
 #if defined(__SSE2__) && !defined(RT_REAL_FIXED)
 #define FLOAT_WALK 1
-typedef float v4f __attribute__((vector_size(16), aligned(4), may_alias));
 
 /* The double build's float box test: origins rounded to the safe side, reciprocals
  * shrunk (near planes) or grown (far planes) by 2^-21, so a child the exact double test
@@ -60,8 +59,6 @@ static inline bool float_slab_prepare(const rt_ray_setup *rs, rt_real extent, fl
     f->t_max = float_outward(rs->ray.t_max, true);
     return usable & (t_min >= 0x1p-100) & (t_min <= 0x1p100);
 }
-
-static inline v4f v4f_all(float x) { return (v4f){x, x, x, x}; }
 
 /* The one-ray walks (bvh_walk.h): rt_scene_nearest (any: rt_scene_any) for a ray the float
  * bounds take, with f from float_slab_prepare; the avx2 kernel's is the same code

@@ -9,6 +9,7 @@
 #include "bvh_float.h"
 
 #if FLOAT_WALK
+#define WALK_VEC 32
 #define WALK_TARGET __attribute__((target("avx2")))
 #define WALK_NAME rt_bvh_walk_avx2
 #include "bvh_walk.h"

@@ -3,6 +3,7 @@
 #include "bvh_float.h"
 
 #if FLOAT_WALK
+#define WALK_VEC 16
 #define WALK_TARGET
 #define WALK_NAME rt_bvh_walk_sse2
 #include "bvh_walk.h"

@@ -296,7 +296,8 @@ PACKET_TARGET unsigned PACKET_WALK(const rt_scene *scene, const rt_ray_setup *co
             pk_f t[RT_BVH_WIDTH][PACKET_NF];
             unsigned hits[RT_BVH_WIDTH];
             int order[RT_BVH_WIDTH], n_hit = 0; /* the hit children, nearest first */
-            for (int c = 0; c < RT_BVH_WIDTH; c++) {
+            /* Slots are filled from 0: the first unused one ends the node. */
+            for (int c = 0; c < RT_BVH_WIDTH && node->count[c] != RT_BVH_NO_CHILD; c++) {
                 hits[c] = pk_child(&p, node, c, t[c]) & mask;
                 if (hits[c]) order[n_hit++] = c;
             }

@@ -1,5 +1,5 @@
 /* The per-ray box tests of the general BVH walk (scene_query.c): a ray's slab set-up, and
- * the test of a node's four children in the double build with SSE2, in the fixed build
+ * the test of a node's eight children in the double build with SSE2, in the fixed build
  * with integer bounds, and one by one otherwise. (Most rays of the double build on x86
  * take the float walk of bvh_float.h instead.) Included by scene_query.c only. */
 #ifndef RT_BVH_SLAB_H
@@ -8,7 +8,7 @@
 #include "bvh.h"
 #include "scene_query.h"
 
-/* The double build tests a node's four children two at a time with SSE2 (x86-64's
+/* The double build tests a node's eight children two at a time with SSE2 (x86-64's
  * baseline), the fixed build with integer bounds (below); other targets and unusual
  * rays test them one by one. The SSE2 operations are the compilers' own builtins (the
  * core includes no intrinsics header). */
@@ -190,41 +190,48 @@ static inline bool slab_hit(const slab_ray *r, const rt_bvh_node *node, int c, r
 }
 
 #if SLAB_SSE2
+#define SLAB_PAIRS (RT_BVH_WIDTH / 2)
 typedef struct {
-    v2df t0_01, t0_23, t1_01, t1_23; /* entry and exit distances of children 0, 1 and 2, 3 */
-} slab4;
+    v2df t0[SLAB_PAIRS], t1[SLAB_PAIRS]; /* entry and exit distances of children 2i, 2i + 1 */
+} slab_pairs;
 
-/* One axis of slab_hit for all four children, two per register: the same IEEE
+/* One axis of slab_hit for all the children, two per register: the same IEEE
  * operations in the same order, so the same distances (maxpd and minpd are rt_max and
  * rt_min: a > b ? a : b and a < b ? a : b). */
 __attribute__((always_inline)) static inline void slab_axis_sse2(const slab_ray *r, const rt_bvh_node *node, int k,
-                                                                 slab4 *s)
+                                                                 slab_pairs *s)
 {
-    v4sf near = *(const v4sf *)node->box[r->near[k]], far = *(const v4sf *)node->box[r->far[k]];
     v2df o = r->origin2[k], inv = r->inv2[k];
-    s->t0_01 = __builtin_ia32_maxpd(s->t0_01, (v2df_from_lo(near) - o) * inv);
-    s->t0_23 = __builtin_ia32_maxpd(s->t0_23, (v2df_from_hi(near) - o) * inv);
-    s->t1_01 = __builtin_ia32_minpd(s->t1_01, (v2df_from_lo(far) - o) * inv);
-    s->t1_23 = __builtin_ia32_minpd(s->t1_23, (v2df_from_hi(far) - o) * inv);
+    for (int q = 0; q < RT_BVH_WIDTH / 4; q++) {
+        v4sf near = *(const v4sf *)&node->box[r->near[k]][4 * q], far = *(const v4sf *)&node->box[r->far[k]][4 * q];
+        s->t0[2 * q] = __builtin_ia32_maxpd(s->t0[2 * q], (v2df_from_lo(near) - o) * inv);
+        s->t0[2 * q + 1] = __builtin_ia32_maxpd(s->t0[2 * q + 1], (v2df_from_hi(near) - o) * inv);
+        s->t1[2 * q] = __builtin_ia32_minpd(s->t1[2 * q], (v2df_from_lo(far) - o) * inv);
+        s->t1[2 * q + 1] = __builtin_ia32_minpd(s->t1[2 * q + 1], (v2df_from_hi(far) - o) * inv);
+    }
 }
 
-/* slab_hit on all four children at once. */
+/* slab_hit on all the children at once. */
 __attribute__((always_inline)) static inline unsigned slab_hit_sse2(const slab_ray *r, const rt_bvh_node *node,
                                                                     rt_real t_max, rt_real t_enter[RT_BVH_WIDTH])
 {
     v2df limit = {t_max, t_max};
-    slab4 s = {r->t_min2, r->t_min2, limit, limit};
+    slab_pairs s;
+    for (int i = 0; i < SLAB_PAIRS; i++) s.t0[i] = r->t_min2, s.t1[i] = limit;
     slab_axis_sse2(r, node, 0, &s);
     slab_axis_sse2(r, node, 1, &s);
     slab_axis_sse2(r, node, 2, &s);
-    t_enter[0] = s.t0_01[0];
-    t_enter[1] = s.t0_01[1];
-    t_enter[2] = s.t0_23[0];
-    t_enter[3] = s.t0_23[1];
-    unsigned hits = (unsigned)(__builtin_ia32_movmskpd(__builtin_ia32_cmplepd(s.t0_01, s.t1_01)) |
-                               __builtin_ia32_movmskpd(__builtin_ia32_cmplepd(s.t0_23, s.t1_23)) << 2);
-    v4su unused = *(const v4su *)node->count == RT_BVH_NO_CHILD;
-    return hits & ~(unsigned)__builtin_ia32_movmskps((v4sf)unused);
+    unsigned hits = 0, unused = 0;
+    for (int i = 0; i < SLAB_PAIRS; i++) {
+        t_enter[2 * i] = s.t0[i][0];
+        t_enter[2 * i + 1] = s.t0[i][1];
+        hits |= (unsigned)__builtin_ia32_movmskpd(__builtin_ia32_cmplepd(s.t0[i], s.t1[i])) << (2 * i);
+    }
+    for (int q = 0; q < RT_BVH_WIDTH / 4; q++) {
+        v4su none = *(const v4su *)&node->count[4 * q] == RT_BVH_NO_CHILD;
+        unused |= (unsigned)__builtin_ia32_movmskps((v4sf)none) << (4 * q);
+    }
+    return hits & ~unused;
 }
 #endif
 
@@ -235,7 +242,7 @@ __attribute__((always_inline)) static inline int64_t fixed_plane(const rt_bound 
     return ((int64_t)row[c] - o) * m;
 }
 
-/* All four children with fixed_slab's bounds, against limit_u (units): a superset of the
+/* All the children with fixed_slab's bounds, against limit_u (units): a superset of the
  * exact test's hits, and entry distances in units at or below the exact ones. */
 __attribute__((always_inline)) static inline unsigned slab_hit_fixed(const slab_ray *r, const rt_bvh_node *node,
                                                                      int64_t limit_u, int64_t t_enter[RT_BVH_WIDTH])

@@ -1,11 +1,43 @@
-/* The one-ray float walk (the double build on x86): each node's four children tested in
- * one 128-bit register against the ray's conservative float bounds (bvh_float.h), the
- * nearest hit child descended into directly, the walk's state kept in registers.
+/* The one-ray float walk (the double build on x86): each node's eight children tested,
+ * a register of floats at a time, against the ray's conservative float bounds
+ * (bvh_float.h), the nearest hit child descended into directly, the walk's state kept in
+ * registers.
  *
- * A template: the including file defines WALK_TARGET (a function attribute, possibly
- * empty) and WALK_NAME (the name of the entry point), after including bvh_float.h. The
- * same operations in another instruction set's encoding give the same bits (no
- * contraction: -ffp-contract=off). */
+ * A template: the including file defines WALK_VEC (vector bytes: 16 for SSE2, 32 for
+ * AVX2), WALK_TARGET (a function attribute, possibly empty) and WALK_NAME (the name of
+ * the entry point), after including bvh_float.h. The same operations in another
+ * instruction set's encoding give the same bits (no contraction: -ffp-contract=off). */
+
+#define WALK_LANES (WALK_VEC / 4)              /* floats per vector */
+#define WALK_PARTS (RT_BVH_WIDTH / WALK_LANES) /* vectors per row of a node's boxes */
+typedef float walk_v __attribute__((vector_size(WALK_VEC), aligned(4), may_alias));
+#if WALK_VEC == 32
+#define WALK_ALL(x) ((walk_v){x, x, x, x, x, x, x, x})
+#define WALK_MAX __builtin_ia32_maxps256
+#define WALK_MIN __builtin_ia32_minps256
+#define WALK_MASK_LE(a, b) ((unsigned)__builtin_ia32_movmskps256(__builtin_ia32_cmpps256(a, b, 2))) /* _CMP_LE_OS */
+#else
+#define WALK_ALL(x) ((walk_v){x, x, x, x})
+#define WALK_MAX __builtin_ia32_maxps
+#define WALK_MIN __builtin_ia32_minps
+#define WALK_MASK_LE(a, b) ((unsigned)__builtin_ia32_movmskps(__builtin_ia32_cmpleps(a, b)))
+#endif
+
+/* In float_walk: the node's children whose boxes start at byte `at` of each row, a
+ * vector of them: their entry distances (bounded from below) into `near`, and which
+ * ones the ray enters into `hits`. A statement: in a loop over the parts, gcc spilled
+ * the ray's vectors to the stack (docs/performance.md). */
+#define WALK_TEST(at, near, hits)                                              \
+    do {                                                                       \
+        const char *b = (const char *)node->box + (at);                        \
+        near = WALK_MAX(t_min, (*(const walk_v *)(b + nx) - onx) * inx);       \
+        walk_v far = WALK_MIN(limit, (*(const walk_v *)(b + fx) - ofx) * ifx); \
+        near = WALK_MAX(near, (*(const walk_v *)(b + ny) - ony) * iny);        \
+        far = WALK_MIN(far, (*(const walk_v *)(b + fy) - ofy) * ify);          \
+        near = WALK_MAX(near, (*(const walk_v *)(b + nz) - onz) * inz);        \
+        far = WALK_MIN(far, (*(const walk_v *)(b + fz) - ofz) * ifz);          \
+        hits = WALK_MASK_LE(near, far);                                        \
+    } while (0)
 
 /* A child waiting to be visited: a node (count 0) or a leaf's references, and a lower
  * bound of the distance at which the ray enters its box. */
@@ -31,6 +63,11 @@ __attribute__((always_inline)) static inline float_entry float_nearer(const rt_b
     return float_child(node, a, t);
 }
 
+/* clang-format off */
+#define FLOAT_ONE_HIT(a) case 1u << a: return float_child(node, a, t);
+#define FLOAT_TWO_HITS(a, b) case 1u << a | 1u << b: return float_nearer(node, a, b, t, stack, top);
+/* clang-format on */
+
 /* Returns the nearest of the children in `hits`, pushing the others farthest first.
  * One or two hits are told apart by branches, each with its slots as constants, not
  * computed: a predicted branch lets the next node's load start before this node's test
@@ -40,16 +77,8 @@ __attribute__((always_inline)) static inline float_entry float_descend(const rt_
                                                                        uint32_t *top)
 {
     switch (hits) {
-    case 1: return float_child(node, 0, t);
-    case 2: return float_child(node, 1, t);
-    case 4: return float_child(node, 2, t);
-    case 8: return float_child(node, 3, t);
-    case 3: return float_nearer(node, 0, 1, t, stack, top);
-    case 5: return float_nearer(node, 0, 2, t, stack, top);
-    case 6: return float_nearer(node, 1, 2, t, stack, top);
-    case 9: return float_nearer(node, 0, 3, t, stack, top);
-    case 10: return float_nearer(node, 1, 3, t, stack, top);
-    case 12: return float_nearer(node, 2, 3, t, stack, top);
+        RT_BVH_SLOTS(FLOAT_ONE_HIT)
+        RT_BVH_SLOT_PAIRS(FLOAT_TWO_HITS)
     default: break;
     }
     int order[RT_BVH_WIDTH], n = 0; /* the hit children by entry distance, ties by slot */
@@ -81,11 +110,11 @@ WALK_TARGET __attribute__((always_inline)) static inline bool float_walk(const r
     const size_t row = sizeof nodes->box[0];
     size_t nx = d.x < 0 ? 3 * row : 0, ny = d.y < 0 ? 4 * row : row, nz = d.z < 0 ? 5 * row : 2 * row;
     size_t fx = d.x < 0 ? 0 : 3 * row, fy = d.y < 0 ? row : 4 * row, fz = d.z < 0 ? 2 * row : 5 * row;
-    v4f onx = v4f_all(f->o_near[0]), ony = v4f_all(f->o_near[1]), onz = v4f_all(f->o_near[2]);
-    v4f ofx = v4f_all(f->o_far[0]), ofy = v4f_all(f->o_far[1]), ofz = v4f_all(f->o_far[2]);
-    v4f inx = v4f_all(f->inv_near[0]), iny = v4f_all(f->inv_near[1]), inz = v4f_all(f->inv_near[2]);
-    v4f ifx = v4f_all(f->inv_far[0]), ify = v4f_all(f->inv_far[1]), ifz = v4f_all(f->inv_far[2]);
-    v4f t_min = v4f_all(f->t_min), limit = v4f_all(f->t_max);
+    walk_v onx = WALK_ALL(f->o_near[0]), ony = WALK_ALL(f->o_near[1]), onz = WALK_ALL(f->o_near[2]);
+    walk_v ofx = WALK_ALL(f->o_far[0]), ofy = WALK_ALL(f->o_far[1]), ofz = WALK_ALL(f->o_far[2]);
+    walk_v inx = WALK_ALL(f->inv_near[0]), iny = WALK_ALL(f->inv_near[1]), inz = WALK_ALL(f->inv_near[2]);
+    walk_v ifx = WALK_ALL(f->inv_far[0]), ify = WALK_ALL(f->inv_far[1]), ifz = WALK_ALL(f->inv_far[2]);
+    walk_v t_min = WALK_ALL(f->t_min), limit = WALK_ALL(f->t_max);
     float best = f->t_max;
     float_entry stack[FLOAT_STACK], e = {0, 0, 0.0f}; /* the root node */
     uint32_t top = 0;
@@ -94,24 +123,30 @@ WALK_TARGET __attribute__((always_inline)) static inline bool float_walk(const r
         /* Descend into the nearest child directly; the others wait on the stack. */
         while (e.count == 0) {
             const rt_bvh_node *node = &nodes[e.child];
-            const char *b = (const char *)node->box;
-            v4f t0 = __builtin_ia32_maxps(t_min, (*(const v4f *)(b + nx) - onx) * inx);
-            v4f t1 = __builtin_ia32_minps(limit, (*(const v4f *)(b + fx) - ofx) * ifx);
-            t0 = __builtin_ia32_maxps(t0, (*(const v4f *)(b + ny) - ony) * iny);
-            t1 = __builtin_ia32_minps(t1, (*(const v4f *)(b + fy) - ofy) * ify);
-            t0 = __builtin_ia32_maxps(t0, (*(const v4f *)(b + nz) - onz) * inz);
-            t1 = __builtin_ia32_minps(t1, (*(const v4f *)(b + fz) - ofz) * ifz);
-            unsigned hits = (unsigned)__builtin_ia32_movmskps(__builtin_ia32_cmpleps(t0, t1));
-            if (!hits) goto pop;
             float t[RT_BVH_WIDTH];
-            *(v4f *)t = t0;
+#if WALK_PARTS == 1
+            walk_v t0;
+            unsigned hits;
+            WALK_TEST(0, t0, hits);
+            if (!hits) goto pop;
+            *(walk_v *)t = t0;
+#else
+            walk_v t0, t4;
+            unsigned lo, hi;
+            WALK_TEST(0, t0, lo);
+            WALK_TEST(WALK_VEC, t4, hi);
+            unsigned hits = lo | hi << WALK_LANES;
+            if (!hits) goto pop;
+            *(walk_v *)t = t0;
+            *(walk_v *)(t + WALK_LANES) = t4;
+#endif
             RT_ASSERT(top + RT_BVH_WIDTH - 1 <= FLOAT_STACK);
             e = float_descend(node, hits, t, stack, &top);
         }
         if (visit_leaf(scene, e.child, e.count, rs, any, out, &found)) {
             if (any) return true;
             best = float_outward(out->hit.t, true);
-            limit = v4f_all(best);
+            limit = WALK_ALL(best);
         }
     pop:
         do {

@@ -175,19 +175,25 @@ typedef struct {
     rt_trace_settings trace;
 } rt_camera;
 
-/* A BVH node, 128 bytes: up to RT_BVH_WIDTH children, each an inner node or a leaf.
+/* A BVH node, 32 bytes a slot: up to RT_BVH_WIDTH children, each an inner node or a leaf.
  * Child c's box is box[k][c] for the planes k = lo x, y, z, hi x, y, z, rounded outwards
  * to four bytes (rt_bound, on the tree's grid). An inner child is nodes[child[c]] with
  * count[c] = 0; a leaf child covers prim_refs[child[c] .. child[c] + count[c]); an
- * unused slot has count[c] = RT_BVH_NO_CHILD. Slots are filled from 0. */
+ * unused slot has count[c] = RT_BVH_NO_CHILD. Slots are filled from 0. Eight slots where
+ * the double build tests a node's boxes with vectors (x86: SSE2 and AVX2, bvh_float.h),
+ * four where the test is scalar (the fixed build, other targets) and pays for every slot. */
+#if defined(__SSE2__) && !defined(RT_REAL_FIXED)
+#define RT_BVH_WIDTH 8
+#else
 #define RT_BVH_WIDTH 4
+#endif
 #define RT_BVH_NO_CHILD UINT32_MAX
 typedef struct {
     rt_bound box[6][RT_BVH_WIDTH];
     uint32_t child[RT_BVH_WIDTH];
     uint32_t count[RT_BVH_WIDTH];
 } rt_bvh_node;
-_Static_assert(sizeof(rt_bvh_node) == 128, "a BVH node is two 64-byte cache lines");
+_Static_assert(sizeof(rt_bvh_node) == 32 * RT_BVH_WIDTH, "a BVH node is whole 64-byte cache lines");
 
 /* The query code the BVH runs: every kernel gives the same results. The build picks the
  * best one the compiler's target guarantees (SSE2 on x86-64); the platform may pick

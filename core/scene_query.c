@@ -42,6 +42,11 @@ __attribute__((always_inline)) static inline stack_entry nearer_of(const rt_bvh_
     return child_entry(node, a, t[a]);
 }
 
+/* clang-format off */
+#define ONE_HIT(a) case 1u << a: return child_entry(node, a, t[a]);
+#define TWO_HITS(a, b) case 1u << a | 1u << b: return nearer_of(node, a, b, t, stack, top);
+/* clang-format on */
+
 /* Returns the nearest of the children in `hits`, pushing the others farthest first.
  * One or two hits are told apart by branches, each with its slots as constants, not
  * computed: a predicted branch lets the next node's load start before this node's test
@@ -51,16 +56,8 @@ __attribute__((always_inline)) static inline stack_entry descend(const rt_bvh_no
                                                                  uint32_t *top)
 {
     switch (hits) {
-    case 1: return child_entry(node, 0, t[0]);
-    case 2: return child_entry(node, 1, t[1]);
-    case 4: return child_entry(node, 2, t[2]);
-    case 8: return child_entry(node, 3, t[3]);
-    case 3: return nearer_of(node, 0, 1, t, stack, top);
-    case 5: return nearer_of(node, 0, 2, t, stack, top);
-    case 6: return nearer_of(node, 1, 2, t, stack, top);
-    case 9: return nearer_of(node, 0, 3, t, stack, top);
-    case 10: return nearer_of(node, 1, 3, t, stack, top);
-    case 12: return nearer_of(node, 2, 3, t, stack, top);
+        RT_BVH_SLOTS(ONE_HIT)
+        RT_BVH_SLOT_PAIRS(TWO_HITS)
     default: break;
     }
     int order[RT_BVH_WIDTH], n = 0; /* the hit children by entry distance, ties by slot */
