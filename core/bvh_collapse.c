@@ -76,8 +76,15 @@ typedef struct {
 /* Each wide level pushes at most RT_BVH_WIDTH tasks, over at most RT_BVH_MAX_DEPTH levels. */
 #define COLLAPSE_STACK (RT_BVH_MAX_DEPTH * RT_BVH_WIDTH + 1)
 
-/* Wide nodes are numbered depth first; returns their count. */
-static uint32_t collapse(const rt_bin_node *bin, int grid, rt_bvh_node *wide, collapse_task *stack, uint32_t *depth)
+/* Wide nodes are allocated one by one as they are numbered: whole cache lines at 64-byte
+ * alignment, so the arena places them end to end after node 0, and the tree takes its own
+ * size, not the bound of one node per binary inner node. */
+_Static_assert(sizeof(rt_bvh_node) % 64 == 0, "nodes allocated one by one lie end to end");
+
+/* Wide nodes are numbered depth first from wide (node 0, allocated); returns their count,
+ * or 0 when the arena is full. */
+static uint32_t collapse(const rt_bin_node *bin, int grid, rt_arena *arena, rt_bvh_node *wide, collapse_task *stack,
+                         uint32_t *depth)
 {
     uint32_t top = 0, count = 1;
     stack[top++] = (collapse_task){0, 0, 1};
@@ -100,6 +107,7 @@ static uint32_t collapse(const rt_bin_node *bin, int grid, rt_bvh_node *wide, co
                 node->child[c] = kid->first;
                 continue;
             }
+            if (!rt_arena_alloc_aligned(arena, sizeof(rt_bvh_node), 64)) return 0;
             node->child[c] = count;
             /* Its children are read when it is popped: far apart in the binary tree's slots. */
             __builtin_prefetch(&bin[kid->first]);
@@ -112,11 +120,14 @@ static uint32_t collapse(const rt_bin_node *bin, int grid, rt_bvh_node *wide, co
 
 rt_status rt_bvh_collapse(const rt_bin_node *bin, uint32_t inner, rt_bvh *bvh, rt_arena *arena)
 {
-    /* At most one wide node per binary inner node, or one. Each fills whole cache lines. */
-    bvh->nodes = rt_arena_alloc_aligned(arena, ((size_t)inner + 1) * sizeof(rt_bvh_node), 64);
     collapse_task *stack = RT_NEW_ARRAY(arena, collapse_task, COLLAPSE_STACK);
-    if (!bvh->nodes || !stack) return RT_ERR_NOMEM;
-    bvh->node_count = collapse(bin, bvh->grid, bvh->nodes, stack, &bvh->depth);
+    bvh->nodes = stack ? rt_arena_alloc_aligned(arena, sizeof(rt_bvh_node), 64) : NULL; /* node 0 */
+    if (!bvh->nodes) return RT_ERR_NOMEM;
+    bvh->node_count = collapse(bin, bvh->grid, arena, bvh->nodes, stack, &bvh->depth);
+    if (bvh->node_count == 0) return RT_ERR_NOMEM;
+    /* At most one wide node per binary inner node, or one (checked in the asserts build). */
+    (void)inner;
+    RT_ASSERT(bvh->node_count <= inner + 1);
     return RT_OK;
 }
 

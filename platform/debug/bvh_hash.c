@@ -13,7 +13,7 @@ void rtp_bvh_hash(const rt_bvh *bvh, uint32_t prim_count, char hex[65])
     rt_sha256_update(&h, &bvh->depth, sizeof bvh->depth);
     rt_sha256_update(&h, &grid, sizeof grid);
     rt_sha256_update(&h, &bvh->extent, sizeof bvh->extent);
-    /* rt_bvh_node has no padding: 6 x 4 bounds and 2 x 4 words of four bytes. */
+    /* rt_bvh_node has no padding: 6 x RT_BVH_WIDTH bounds and 2 x RT_BVH_WIDTH words of four bytes. */
     _Static_assert(sizeof(rt_bvh_node) == 6 * RT_BVH_WIDTH * sizeof(rt_bound) + 2 * RT_BVH_WIDTH * sizeof(uint32_t),
                    "rt_bvh_node is hashed as bytes");
     rt_sha256_update(&h, bvh->nodes, (size_t)bvh->node_count * sizeof(rt_bvh_node));
