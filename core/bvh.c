@@ -88,7 +88,7 @@ rt_aabb rt_bvh_prim_bounds(const rt_scene *scene, uint32_t prim) { return prim_b
  * it, so each node's passes read its references in order instead of gathering them. */
 
 typedef struct {
-    uint32_t node, first, count, depth;
+    uint32_t node, first, count, depth, parent_count;
     rt_aabb bounds, centroids; /* of the references, from the parent's bins and partition */
 } build_task;
 
@@ -249,10 +249,15 @@ typedef struct {
     binning *level_binning;
     bin_chunk *chunks;
     split *level_split;
-    /* The subtrees built whole, the inner nodes each made, and a stack per worker. */
+    /* The subtrees built whole, the inner nodes each made, and a stack per worker; and
+     * scratch per worker to collapse wide roots of up to block_refs references (NULL:
+     * the final collapse makes every wide node). */
     build_task *subtrees;
     uint32_t *subtree_inner;
     build_task *stacks;
+    unsigned char *block_scratch;
+    size_t block_scratch_size;
+    uint32_t block_refs;
 } build;
 
 /* A subtree's stack: each split pushes two tasks and pops one, once per level. */
@@ -279,9 +284,11 @@ static void make_node(const build *b, const build_task *task, const split *s, ui
         *next_pair += 2;
     }
     node->first = left;
-    node->count = 0;
-    kids[0] = (build_task){left, task->first, left_n, task->depth + 1, s->left, left_c};
-    kids[1] = (build_task){left + 1, task->first + left_n, task->count - left_n, task->depth + 1, s->right, right_c};
+    node->count =
+        task->count <= RT_BIN_WIDE_ROOT_MAX && task->parent_count > RT_BIN_WIDE_ROOT_MAX ? RT_BIN_WIDE_ROOT : 0;
+    kids[0] = (build_task){left, task->first, left_n, task->depth + 1, task->count, s->left, left_c};
+    kids[1] = (build_task){left + 1, task->first + left_n, task->count - left_n, task->depth + 1, task->count, s->right,
+                           right_c};
 }
 
 /* Bins and prices task and stores its node (make_node, with next_pair); returns whether
@@ -362,7 +369,12 @@ static void partition_job(void *arg, uint32_t index, uint32_t worker)
 static void subtree_job(void *arg, uint32_t index, uint32_t worker)
 {
     build *b = arg;
-    b->subtree_inner[index] = build_subtree(b, b->subtrees[index], &b->stacks[(size_t)worker * SUBTREE_STACK]);
+    const build_task *root = &b->subtrees[index];
+    b->subtree_inner[index] = build_subtree(b, *root, &b->stacks[(size_t)worker * SUBTREE_STACK]);
+    /* A wide root's wide nodes are made while its binary nodes are in this core's caches. */
+    if (b->block_scratch && b->nodes[root->node].count == RT_BIN_WIDE_ROOT)
+        rt_bvh_collapse_block(b->nodes, root->node, root->first, root->count, b->grid,
+                              b->block_scratch + worker * b->block_scratch_size, b->block_refs);
 }
 
 /* Whether the top phase splits task, level by level, rather than one job building it whole. */
@@ -426,8 +438,9 @@ static uint32_t split_level(build *b, uint32_t count, uint32_t *subtrees, uint32
 rt_bvh_plan rt_bvh_default_plan(void)
 {
     /* About 50 top tasks and 50 subtrees for a million references; a chunk is bounded
-     * in about a third of a millisecond, binned in about a tenth. */
-    rt_bvh_plan p = {16384, 16384};
+     * in about a third of a millisecond, binned in about a tenth. Subtrees of at most
+     * RT_BIN_WIDE_ROOT_MAX references are wide roots, collapsed in their jobs. */
+    rt_bvh_plan p = {RT_BIN_WIDE_ROOT_MAX, 16384};
     return p;
 }
 
@@ -456,12 +469,29 @@ static bool alloc_phases(build *b, rt_arena *arena, uint32_t n)
     return b->subtrees && b->subtree_inner;
 }
 
+/* Scratch for the subtrees' jobs to collapse their roots, if any may be wide roots, for
+ * every worker that may run them (one job runs on worker 0). Optional: without it (a small
+ * arena), the final collapse makes every wide node. */
+static void alloc_block_scratch(build *b, rt_arena *arena, uint32_t subtrees)
+{
+    b->block_refs = 0;
+    for (uint32_t s = 0; s < subtrees; s++) {
+        const build_task *t = &b->subtrees[s];
+        if (t->count > LEAF_MIN && t->count <= RT_BIN_WIDE_ROOT_MAX && t->parent_count > RT_BIN_WIDE_ROOT_MAX)
+            b->block_refs = t->count > b->block_refs ? t->count : b->block_refs;
+    }
+    if (b->block_refs == 0) return;
+    b->block_scratch_size = rt_bvh_block_scratch_size(b->block_refs);
+    size_t workers = subtrees > 1 ? rt_workers_count(b->workers) : 1;
+    b->block_scratch = rt_arena_alloc_aligned(arena, workers * b->block_scratch_size, 64);
+}
+
 /* Builds the binary tree over n > 0 references into b->nodes; returns its inner node count. */
-static uint32_t build_binary(build *b, uint32_t n)
+static uint32_t build_binary(build *b, rt_arena *arena, uint32_t n)
 {
     uint32_t chunks = (n - 1) / b->plan.chunk + 1;
     rt_workers_run(b->workers, bound_refs_job, b, chunks);
-    build_task root = {0, 0, n, 1, rt_aabb_empty(), rt_aabb_empty()};
+    build_task root = {0, 0, n, 1, UINT32_MAX, rt_aabb_empty(), rt_aabb_empty()};
     for (uint32_t c = 0; c < chunks; c++) {
         root.bounds = aabb_union(root.bounds, b->chunk_bounds[c]);
         root.centroids = aabb_union(root.centroids, b->chunk_centroids[c]);
@@ -474,6 +504,7 @@ static uint32_t build_binary(build *b, uint32_t n)
     else
         b->subtrees[subtrees++] = root;
     while (level > 0) level = split_level(b, level, &subtrees, &inner);
+    alloc_block_scratch(b, arena, subtrees);
     rt_workers_run(b->workers, subtree_job, b, subtrees);
     for (uint32_t s = 0; s < subtrees; s++) inner += b->subtree_inner[s];
     return inner;
@@ -503,7 +534,7 @@ rt_status rt_bvh_build_planned(rt_scene *scene, rt_arena *arena, const rt_worker
     b.stacks = rt_arena_alloc(arena, (size_t)rt_workers_count(workers) * SUBTREE_STACK * sizeof *b.stacks);
     if (!b.nodes || !b.refs || !b.chunk_bounds || !b.chunk_centroids || !b.stacks || !alloc_phases(&b, arena, n))
         return RT_ERR_NOMEM;
-    uint32_t inner = build_binary(&b, n);
+    uint32_t inner = build_binary(&b, arena, n);
     bvh->grid = b.grid;
     bvh->extent = b.extent;
     for (uint32_t i = 0; i < n; i++) bvh->prim_refs[i] = b.refs[i].prim;

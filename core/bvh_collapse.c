@@ -31,11 +31,16 @@ static rt_aabb bin_box(const rt_bin_node *n, int g)
     return stored_box(n->box[0], n->box[1], n->box[2], n->box[3], n->box[4], n->box[5], g);
 }
 
+/* Whether binary node n is a leaf (inner nodes' counts are 0, RT_BIN_WIDE_ROOT or
+ * RT_BIN_COLLAPSED). */
+static bool bin_leaf(const rt_bin_node *n) { return n->count != 0 && n->count < RT_BIN_COLLAPSED; }
+
 /* Up to RT_BVH_WIDTH binary nodes that together cover binary node b's references: its
- * children, then repeatedly the largest-area inner one replaced by its own two. */
+ * children, then repeatedly the largest-area inner one replaced by its own two; wide
+ * roots are not opened. */
 static int gather_children(const rt_bin_node *bin, uint32_t b, int grid, uint32_t out[RT_BVH_WIDTH])
 {
-    if (bin[b].count > 0) {
+    if (bin_leaf(&bin[b])) {
         out[0] = b; /* a leaf root: one leaf child */
         return 1;
     }
@@ -76,22 +81,59 @@ typedef struct {
 /* Each wide level pushes at most RT_BVH_WIDTH tasks, over at most RT_BVH_MAX_DEPTH levels. */
 #define COLLAPSE_STACK (RT_BVH_MAX_DEPTH * RT_BVH_WIDTH + 1)
 
-/* Wide nodes are allocated one by one as they are numbered: whole cache lines at 64-byte
- * alignment, so the arena places them end to end after node 0, and the tree takes its own
- * size, not the bound of one node per binary inner node. */
+/* Wide nodes are allocated as they are numbered: whole cache lines at 64-byte alignment,
+ * so the arena places them end to end after node 0, and the tree takes its own size, not
+ * the bound of one node per binary inner node. */
 _Static_assert(sizeof(rt_bvh_node) % 64 == 0, "nodes allocated one by one lie end to end");
 
-/* Wide nodes are numbered depth first from wide (node 0, allocated); returns their count,
- * or 0 when the arena is full. */
-static uint32_t collapse(const rt_bin_node *bin, int grid, rt_arena *arena, rt_bvh_node *wide, collapse_task *stack,
-                         uint32_t *depth)
+/* Where the wide nodes go: from the arena (the tree), or into an array of cap (a block). */
+typedef struct {
+    rt_bvh_node *nodes;
+    uint32_t count, cap;
+    rt_arena *arena;
+} wide_nodes;
+
+/* Takes the next k nodes; false when the arena is full or the array would overflow. */
+static bool take_nodes(wide_nodes *w, uint32_t k)
 {
-    uint32_t top = 0, count = 1;
-    stack[top++] = (collapse_task){0, 0, 1};
+    if (w->arena ? !rt_arena_alloc_aligned(w->arena, (size_t)k * sizeof(rt_bvh_node), 64) : k > w->cap - w->count)
+        return false;
+    w->count += k;
+    return true;
+}
+
+/* Copies wide root t's block (RT_BIN_COLLAPSED) into w: its node 0 at t.wide, the others
+ * as the next nodes, in their order, which is the one the collapse would give them. */
+static bool copy_block(const rt_bin_node *bin, collapse_task t, wide_nodes *w, uint32_t *depth)
+{
+    uint32_t head = bin[t.bin].first, count = bin[head].first, base = w->count;
+    if (!take_nodes(w, count - 1)) return false;
+    const unsigned char *from = (const unsigned char *)&bin[head + 1];
+    for (uint32_t k = 0; k < count; k++) {
+        rt_bvh_node *node = &w->nodes[k == 0 ? t.wide : base + k - 1];
+        __builtin_memcpy(node, from + (size_t)k * sizeof(rt_bvh_node), sizeof(rt_bvh_node));
+        for (int c = 0; c < RT_BVH_WIDTH; c++)
+            if (node->count[c] == 0) node->child[c] += base - 1;
+    }
+    if (t.depth + bin[head].count - 1 > *depth) *depth = t.depth + bin[head].count - 1;
+    return true;
+}
+
+/* Wide nodes are numbered depth first from w's node `wide` (taken), made from binary node
+ * `root`; returns false when w is full. */
+static bool collapse(const rt_bin_node *bin, uint32_t root, int grid, wide_nodes *w, collapse_task *stack,
+                     uint32_t *depth)
+{
+    uint32_t top = 0;
+    stack[top++] = (collapse_task){root, w->count - 1, 1};
     *depth = 1;
     while (top > 0) {
         collapse_task t = stack[--top];
-        rt_bvh_node *node = &wide[t.wide];
+        if (bin[t.bin].count == RT_BIN_COLLAPSED) {
+            if (!copy_block(bin, t, w, depth)) return false;
+            continue;
+        }
+        rt_bvh_node *node = &w->nodes[t.wide];
         uint32_t kids[RT_BVH_WIDTH];
         int n = gather_children(bin, t.bin, grid, kids);
         for (int c = RT_BVH_WIDTH - 1; c >= 0; c--) {
@@ -102,20 +144,21 @@ static uint32_t collapse(const rt_bin_node *bin, int grid, rt_arena *arena, rt_b
             const rt_bin_node *kid = &bin[kids[c]];
             for (int k = 0; k < 6; k++) node->box[k][c] = kid->box[k];
             if (t.depth + 1 > *depth) *depth = t.depth + 1;
-            node->count[c] = kid->count;
-            if (kid->count > 0) {
+            if (bin_leaf(kid)) {
+                node->count[c] = kid->count;
                 node->child[c] = kid->first;
                 continue;
             }
-            if (!rt_arena_alloc_aligned(arena, sizeof(rt_bvh_node), 64)) return 0;
-            node->child[c] = count;
+            if (!take_nodes(w, 1)) return false;
+            node->count[c] = 0;
+            node->child[c] = w->count - 1;
             /* Its children are read when it is popped: far apart in the binary tree's slots. */
             __builtin_prefetch(&bin[kid->first]);
             RT_ASSERT(top < COLLAPSE_STACK);
-            stack[top++] = (collapse_task){kids[c], count++, t.depth + 1};
+            stack[top++] = (collapse_task){kids[c], w->count - 1, t.depth + 1};
         }
     }
-    return count;
+    return true;
 }
 
 rt_status rt_bvh_collapse(const rt_bin_node *bin, uint32_t inner, rt_bvh *bvh, rt_arena *arena)
@@ -123,12 +166,40 @@ rt_status rt_bvh_collapse(const rt_bin_node *bin, uint32_t inner, rt_bvh *bvh, r
     collapse_task *stack = RT_NEW_ARRAY(arena, collapse_task, COLLAPSE_STACK);
     bvh->nodes = stack ? rt_arena_alloc_aligned(arena, sizeof(rt_bvh_node), 64) : NULL; /* node 0 */
     if (!bvh->nodes) return RT_ERR_NOMEM;
-    bvh->node_count = collapse(bin, bvh->grid, arena, bvh->nodes, stack, &bvh->depth);
-    if (bvh->node_count == 0) return RT_ERR_NOMEM;
+    wide_nodes w = {bvh->nodes, 1, 0, arena};
+    if (!collapse(bin, 0, bvh->grid, &w, stack, &bvh->depth)) return RT_ERR_NOMEM;
+    bvh->node_count = w.count;
     /* At most one wide node per binary inner node, or one (checked in the asserts build). */
     (void)inner;
     RT_ASSERT(bvh->node_count <= inner + 1);
     return RT_OK;
+}
+
+/* A block's wide nodes fit in the 2 count - 3 slots after its head (bvh_binary.h). */
+static uint32_t block_room(uint32_t count) { return (2 * count - 3) * sizeof(rt_bin_node) / sizeof(rt_bvh_node); }
+
+size_t rt_bvh_block_scratch_size(uint32_t refs)
+{
+    size_t stack = (COLLAPSE_STACK * sizeof(collapse_task) + 63) / 64 * 64;
+    return stack + (refs < 2 ? 0 : block_room(refs)) * sizeof(rt_bvh_node);
+}
+
+void rt_bvh_collapse_block(rt_bin_node *bin, uint32_t root, uint32_t first, uint32_t count, int grid, void *scratch,
+                           uint32_t scratch_refs)
+{
+    collapse_task *stack = scratch;
+    size_t stack_size = (COLLAPSE_STACK * sizeof(collapse_task) + 63) / 64 * 64;
+    wide_nodes w = {(rt_bvh_node *)((unsigned char *)scratch + stack_size), 1, block_room(scratch_refs), NULL};
+    if (count < scratch_refs) w.cap = block_room(count);
+    uint32_t depth;
+    if (w.cap < 1) return;
+    if (!collapse(bin, root, grid, &w, stack, &depth)) return;
+    uint32_t head = 2 * first + 1;
+    __builtin_memcpy(&bin[head + 1], w.nodes, (size_t)w.count * sizeof(rt_bvh_node));
+    bin[head].first = w.count;
+    bin[head].count = depth;
+    bin[root].first = head;
+    bin[root].count = RT_BIN_COLLAPSED;
 }
 
 rt_status rt_bvh_empty(rt_bvh *bvh, rt_arena *arena)

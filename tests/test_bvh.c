@@ -221,6 +221,29 @@ Test(bvh, tree_does_not_depend_on_plan_or_workers)
     free(memory);
 }
 
+/* Above 16,384 references the tree has wide roots below its top (core/bvh_binary.h):
+ * the default plan collapses them in the jobs that build them, while a plan that splits
+ * further down, or builds everything in one job, leaves them to the final collapse. The
+ * trees are the same. */
+Test(bvh, wide_roots_collapsed_in_their_jobs_or_at_the_end)
+{
+    lcg_state = 19;
+    rt_scene s;
+    void *memory;
+    random_scene(&s, &memory, 50000, 0, 1);
+    static const rt_bvh_plan plans[] = {{1000, 777}, {4000, 50000}, {60000, 5000}, {16384, 3000}};
+    rtp_pool *pools[] = {rtp_pool_open(2), rtp_pool_open(3)};
+    rt_workers backwards = {5, run_backwards};
+    for (size_t p = 0; p < sizeof plans / sizeof plans[0]; p++) {
+        assert_same_tree(&s, plans[p], NULL, "on this thread");
+        assert_same_tree(&s, plans[p], &backwards, "backwards");
+        for (size_t t = 0; t < sizeof pools / sizeof pools[0]; t++)
+            assert_same_tree(&s, plans[p], rtp_pool_workers(pools[t]), "threads");
+    }
+    for (size_t t = 0; t < sizeof pools / sizeof pools[0]; t++) rtp_pool_close(pools[t]);
+    free(memory);
+}
+
 /* One primitive, and 40 spheres about one centre (no axis to bin on: one leaf of 40),
  * under a plan that splits everything it can. */
 Test(bvh, degenerate_scenes_under_every_plan)
