@@ -175,25 +175,24 @@ rt_status rt_bvh_collapse(const rt_bin_node *bin, uint32_t inner, rt_bvh *bvh, r
     return RT_OK;
 }
 
-/* A block's wide nodes fit in the 2 count - 3 slots after its head (bvh_binary.h). */
+/* The wide nodes that fit in the 2 count - 3 slots after a block's head (bvh_binary.h),
+ * for a wide root of count (at least 2) references. */
 static uint32_t block_room(uint32_t count) { return (2 * count - 3) * sizeof(rt_bin_node) / sizeof(rt_bvh_node); }
+
+/* A block's scratch: its collapse's stack, then its nodes (64-byte aligned). */
+#define BLOCK_STACK_BYTES ((COLLAPSE_STACK * sizeof(collapse_task) + 63) / 64 * 64)
 
 size_t rt_bvh_block_scratch_size(uint32_t refs)
 {
-    size_t stack = (COLLAPSE_STACK * sizeof(collapse_task) + 63) / 64 * 64;
-    return stack + (refs < 2 ? 0 : block_room(refs)) * sizeof(rt_bvh_node);
+    return BLOCK_STACK_BYTES + (refs < 2 ? 0 : block_room(refs)) * sizeof(rt_bvh_node);
 }
 
 void rt_bvh_collapse_block(rt_bin_node *bin, uint32_t root, uint32_t first, uint32_t count, int grid, void *scratch,
                            uint32_t scratch_refs)
 {
-    collapse_task *stack = scratch;
-    size_t stack_size = (COLLAPSE_STACK * sizeof(collapse_task) + 63) / 64 * 64;
-    wide_nodes w = {(rt_bvh_node *)((unsigned char *)scratch + stack_size), 1, block_room(scratch_refs), NULL};
-    if (count < scratch_refs) w.cap = block_room(count);
-    uint32_t depth;
-    if (w.cap < 1) return;
-    if (!collapse(bin, root, grid, &w, stack, &depth)) return;
+    uint32_t room = block_room(count < scratch_refs ? count : scratch_refs), depth;
+    wide_nodes w = {(rt_bvh_node *)((unsigned char *)scratch + BLOCK_STACK_BYTES), 1, room, NULL};
+    if (room < 1 || !collapse(bin, root, grid, &w, scratch, &depth)) return;
     uint32_t head = 2 * first + 1;
     __builtin_memcpy(&bin[head + 1], w.nodes, (size_t)w.count * sizeof(rt_bvh_node));
     bin[head].first = w.count;
