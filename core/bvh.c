@@ -437,9 +437,10 @@ static uint32_t split_level(build *b, uint32_t count, uint32_t *subtrees, uint32
 
 rt_bvh_plan rt_bvh_default_plan(void)
 {
-    /* About 50 top tasks and 50 subtrees for a million references; a chunk is bounded
-     * in about a third of a millisecond, binned in about a tenth. Subtrees of at most
-     * RT_BIN_WIDE_ROOT_MAX references are wide roots, collapsed in their jobs. */
+    /* About 50 top tasks and 50 subtrees for a million references (twice as many with
+     * nodes of four children); a chunk is bounded in about a third of a millisecond,
+     * binned in about a tenth. Subtrees of at most RT_BIN_WIDE_ROOT_MAX references are
+     * wide roots, collapsed in their jobs. */
     rt_bvh_plan p = {RT_BIN_WIDE_ROOT_MAX, 16384};
     return p;
 }

@@ -21,8 +21,13 @@ typedef struct {
 /* An inner node of at most RT_BIN_WIDE_ROOT_MAX references whose parent has more is a
  * wide root: the collapse does not open it into its parent's wide node. Its count is
  * RT_BIN_WIDE_ROOT (inner nodes' is otherwise 0), so that the job that built its
- * subtree can collapse it there and then (rt_bvh_collapse_block). */
+ * subtree can collapse it there and then (rt_bvh_collapse_block). The sizes give the
+ * fewest wide nodes of those tried on the bench's meshes (docs/performance.md). */
+#if RT_BVH_WIDTH == 8
 #define RT_BIN_WIDE_ROOT_MAX 16384
+#else
+#define RT_BIN_WIDE_ROOT_MAX 8192
+#endif
 #define RT_BIN_WIDE_ROOT UINT32_MAX
 /* The count of a wide root collapsed already: `first` is the slot of its block, whose
  * node count and depth are that slot's first and count, its wide nodes (numbered from
@@ -33,7 +38,8 @@ typedef struct {
 void rt_bvh_store_box(rt_bound box[6], rt_aabb b, int grid);
 
 /* Collapses the binary tree at bin (root node 0, `inner` inner nodes) into the wide
- * tree on bvh->grid: bvh->nodes (in the arena, 64-byte aligned), node_count, depth. */
+ * tree on bvh->grid: bvh->nodes (in the arena, 64-byte aligned), node_count, depth. The
+ * blocks of wide roots collapsed already are copied in. */
 rt_status rt_bvh_collapse(const rt_bin_node *bin, uint32_t inner, rt_bvh *bvh, rt_arena *arena);
 
 /* Bytes of scratch one worker needs to collapse wide roots of up to `refs` references. */

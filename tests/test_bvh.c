@@ -221,10 +221,10 @@ Test(bvh, tree_does_not_depend_on_plan_or_workers)
     free(memory);
 }
 
-/* Above 16,384 references the tree has wide roots below its top (core/bvh_binary.h):
- * the default plan collapses them in the jobs that build them, while a plan that splits
- * further down, or builds everything in one job, leaves them to the final collapse. The
- * trees are the same. */
+/* Above 16,384 references (8,192 with nodes of four children) the tree has wide roots
+ * below its top (core/bvh_binary.h): the default plan collapses them in the jobs that
+ * build them, while a plan that splits further down, or builds everything in one job,
+ * leaves them to the final collapse. The trees are the same. */
 Test(bvh, wide_roots_collapsed_in_their_jobs_or_at_the_end)
 {
     lcg_state = 19;
