@@ -236,6 +236,7 @@ typedef struct {
     rt_bvh_plan plan;
     build_ref *refs;
     rt_bin_node *nodes;
+    uint32_t *prim_refs; /* the tree's, written from refs as each part of it is made */
     rt_real extent;
     int grid;
     /* The references' bounds and centroid bounds, per chunk of plan.chunk. */
@@ -263,6 +264,13 @@ typedef struct {
 /* A subtree's stack: each split pushes two tasks and pops one, once per level. */
 #define SUBTREE_STACK (RT_BVH_MAX_DEPTH + 2)
 
+/* Writes the primitives of refs[first .. first + count), in their final order, to the
+ * tree's list. */
+static void store_prims(const build *b, uint32_t first, uint32_t count)
+{
+    for (uint32_t i = first; i < first + count; i++) b->prim_refs[i] = b->refs[i].prim;
+}
+
 /* Stores task's node: a leaf, or, given its split s, an inner node whose two children
  * (written to kids) get their references by partition, and as nodes the pair of slots
  * at *next_pair (which advances past them) or, with next_pair NULL, the pair the split's
@@ -273,7 +281,10 @@ static void make_node(const build *b, const build_task *task, const split *s, ui
     rt_bvh_store_box(node->box, task->bounds, b->grid);
     node->first = task->first;
     node->count = task->count;
-    if (!s) return;
+    if (!s) {
+        store_prims(b, task->first, task->count); /* a leaf's, final now */
+        return;
+    }
     rt_aabb left_c, right_c;
     /* A split plane has references on both sides (price_split), so 0 < left_n < count. */
     uint32_t left_n = partition(b->refs, task->first, task->count, s, &left_c, &right_c);
@@ -524,7 +535,7 @@ rt_status rt_bvh_build_planned(rt_scene *scene, rt_arena *arena, const rt_worker
     if (plan.split_above < 1) plan.split_above = 1;
     if (plan.chunk < 1) plan.chunk = 1;
     size_t mark = rt_arena_mark(arena);
-    build b = {.scene = scene, .workers = workers, .plan = plan};
+    build b = {.scene = scene, .workers = workers, .plan = plan, .prim_refs = bvh->prim_refs};
     size_t chunks = (n - 1) / plan.chunk + 1;
     /* Every node and reference is written before it is read: no zeroing. */
     b.nodes = rt_arena_alloc(arena, (2 * (size_t)n - 1) * sizeof *b.nodes);
@@ -538,7 +549,6 @@ rt_status rt_bvh_build_planned(rt_scene *scene, rt_arena *arena, const rt_worker
     uint32_t inner = build_binary(&b, arena, n);
     bvh->grid = b.grid;
     bvh->extent = b.extent;
-    for (uint32_t i = 0; i < n; i++) bvh->prim_refs[i] = b.refs[i].prim;
     /* Only the binary tree is read from here on: the wide tree is made over the references
      * and the rest of the scratch, memory already touched. */
     rt_arena_reset(arena, past_nodes);
