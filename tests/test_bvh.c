@@ -197,6 +197,26 @@ static void assert_same_tree(const rt_scene *s, rt_bvh_plan plan, const rt_worke
     free(memory);
 }
 
+/* Asserts that s's tree is built, byte for byte, under each plan: on this thread,
+ * backwards, and on a pool of each of the worker counts. */
+static void assert_same_tree_under_plans(const rt_scene *s, const rt_bvh_plan *plans, size_t plan_count,
+                                         const uint32_t *workers, size_t worker_count)
+{
+    rtp_pool *pools[8];
+    cr_assert_leq(worker_count, 8);
+    for (size_t t = 0; t < worker_count; t++) {
+        pools[t] = rtp_pool_open(workers[t]);
+        cr_assert_eq(rt_workers_count(rtp_pool_workers(pools[t])), workers[t], "a pool of %u workers", workers[t]);
+    }
+    rt_workers backwards = {5, run_backwards};
+    for (size_t p = 0; p < plan_count; p++) {
+        assert_same_tree(s, plans[p], NULL, "on this thread");
+        assert_same_tree(s, plans[p], &backwards, "backwards");
+        for (size_t t = 0; t < worker_count; t++) assert_same_tree(s, plans[p], rtp_pool_workers(pools[t]), "threads");
+    }
+    for (size_t t = 0; t < worker_count; t++) rtp_pool_close(pools[t]);
+}
+
 /* The scene build (default plan; 3050 references are built as one job) is the reference:
  * splitting the top of the tree level by level, bounding in chunks of any size, and
  * running the jobs on threads or backwards give the same tree. */
@@ -208,16 +228,9 @@ Test(bvh, tree_does_not_depend_on_plan_or_workers)
     random_scene(&s, &memory, 3000, 50, 1);
     cr_assert_gt(s.bvh.node_count, 200);
     static const rt_bvh_plan plans[] = {{1, 1}, {4, 3}, {9, 1000}, {64, 64}, {300, 17}, {1000, 5000}, {3049, 1}};
-    rtp_pool *pools[] = {rtp_pool_open(1), rtp_pool_open(2), rtp_pool_open(3), rtp_pool_open(7)};
-    cr_assert_eq(rt_workers_count(rtp_pool_workers(pools[3])), 7, "a pool of 7 workers");
-    rt_workers backwards = {5, run_backwards};
-    for (size_t p = 0; p < sizeof plans / sizeof plans[0]; p++) {
-        assert_same_tree(&s, plans[p], NULL, "on this thread");
-        assert_same_tree(&s, plans[p], &backwards, "backwards");
-        for (size_t t = 0; t < sizeof pools / sizeof pools[0]; t++)
-            assert_same_tree(&s, plans[p], rtp_pool_workers(pools[t]), "threads");
-    }
-    for (size_t t = 0; t < sizeof pools / sizeof pools[0]; t++) rtp_pool_close(pools[t]);
+    static const uint32_t workers[] = {1, 2, 3, 7};
+    assert_same_tree_under_plans(&s, plans, sizeof plans / sizeof plans[0], workers,
+                                 sizeof workers / sizeof workers[0]);
     free(memory);
 }
 
@@ -232,15 +245,9 @@ Test(bvh, wide_roots_collapsed_in_their_jobs_or_at_the_end)
     void *memory;
     random_scene(&s, &memory, 50000, 0, 1);
     static const rt_bvh_plan plans[] = {{1000, 777}, {4000, 50000}, {60000, 5000}, {16384, 3000}};
-    rtp_pool *pools[] = {rtp_pool_open(2), rtp_pool_open(3)};
-    rt_workers backwards = {5, run_backwards};
-    for (size_t p = 0; p < sizeof plans / sizeof plans[0]; p++) {
-        assert_same_tree(&s, plans[p], NULL, "on this thread");
-        assert_same_tree(&s, plans[p], &backwards, "backwards");
-        for (size_t t = 0; t < sizeof pools / sizeof pools[0]; t++)
-            assert_same_tree(&s, plans[p], rtp_pool_workers(pools[t]), "threads");
-    }
-    for (size_t t = 0; t < sizeof pools / sizeof pools[0]; t++) rtp_pool_close(pools[t]);
+    static const uint32_t workers[] = {2, 3};
+    assert_same_tree_under_plans(&s, plans, sizeof plans / sizeof plans[0], workers,
+                                 sizeof workers / sizeof workers[0]);
     free(memory);
 }
 
