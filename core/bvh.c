@@ -92,6 +92,12 @@ typedef struct {
     rt_aabb bounds, centroids; /* of the references, from the parent's bins and partition */
 } build_task;
 
+/* Whether task, if it splits, is a wide root (bvh_binary.h). */
+static bool is_wide_root(const build_task *task)
+{
+    return task->count <= RT_BIN_WIDE_ROOT_MAX && task->parent_count > RT_BIN_WIDE_ROOT_MAX;
+}
+
 /* The references binned so far, per axis and bin: the union of their bounds and their
  * count. A union with an empty box changes no bit, so the sweeps leave empty bins (count
  * 0) out. */
@@ -295,8 +301,7 @@ static void make_node(const build *b, const build_task *task, const split *s, ui
         *next_pair += 2;
     }
     node->first = left;
-    node->count =
-        task->count <= RT_BIN_WIDE_ROOT_MAX && task->parent_count > RT_BIN_WIDE_ROOT_MAX ? RT_BIN_WIDE_ROOT : 0;
+    node->count = is_wide_root(task) ? RT_BIN_WIDE_ROOT : 0;
     kids[0] = (build_task){left, task->first, left_n, task->depth + 1, task->count, s->left, left_c};
     kids[1] = (build_task){left + 1, task->first + left_n, task->count - left_n, task->depth + 1, task->count, s->right,
                            right_c};
@@ -489,8 +494,7 @@ static void alloc_block_scratch(build *b, rt_arena *arena, uint32_t subtrees)
     b->block_refs = 0;
     for (uint32_t s = 0; s < subtrees; s++) {
         const build_task *t = &b->subtrees[s];
-        if (t->count > LEAF_MIN && t->count <= RT_BIN_WIDE_ROOT_MAX && t->parent_count > RT_BIN_WIDE_ROOT_MAX)
-            b->block_refs = t->count > b->block_refs ? t->count : b->block_refs;
+        if (t->count > LEAF_MIN && is_wide_root(t)) b->block_refs = t->count > b->block_refs ? t->count : b->block_refs;
     }
     if (b->block_refs == 0) return;
     b->block_scratch_size = rt_bvh_block_scratch_size(b->block_refs);
