@@ -84,20 +84,28 @@ __attribute__((always_inline)) static inline PACKET_TARGET unsigned pk_child(con
     return hits;
 }
 
+/* The smallest (or with `largest`, the largest) of v's lanes, in every lane: v folded
+ * onto itself with its halves, quarters (and eighths) swapped. */
+__attribute__((always_inline)) static inline PACKET_TARGET pk_f pk_across(pk_f v, bool largest)
+{
+#define PK_FOLD(w) (v = largest ? PK_MAXF(v, w) : PK_MINF(v, w))
+#if PACKET_VEC == 32
+    PK_FOLD(PK_SHUFFLE(v, 4, 5, 6, 7, 0, 1, 2, 3));
+    PK_FOLD(PK_SHUFFLE(v, 2, 3, 0, 1, 6, 7, 4, 5));
+    return PK_FOLD(PK_SHUFFLE(v, 1, 0, 3, 2, 5, 4, 7, 6));
+#else
+    PK_FOLD(PK_SHUFFLE(v, 2, 3, 0, 1));
+    return PK_FOLD(PK_SHUFFLE(v, 1, 0, 3, 2));
+#endif
+#undef PK_FOLD
+}
+
 /* The smallest of a child's entry distances (pk_child's t): the order of children. */
 __attribute__((always_inline)) static inline PACKET_TARGET float pk_first(const pk_f t[PACKET_NF])
 {
     pk_f v = t[0];
     for (int w = 1; w < PACKET_NF; w++) v = PK_MINF(v, t[w]);
-#if PACKET_VEC == 32
-    v = PK_MINF(v, PK_SHUFFLE(v, 4, 5, 6, 7, 0, 1, 2, 3));
-    v = PK_MINF(v, PK_SHUFFLE(v, 2, 3, 0, 1, 6, 7, 4, 5));
-    v = PK_MINF(v, PK_SHUFFLE(v, 1, 0, 3, 2, 5, 4, 7, 6));
-#else
-    v = PK_MINF(v, PK_SHUFFLE(v, 2, 3, 0, 1));
-    v = PK_MINF(v, PK_SHUFFLE(v, 1, 0, 3, 2));
-#endif
-    return v[0];
+    return pk_across(v, false)[0];
 }
 
 /* rt_magnitude lane by lane: the sign bit cleared. */
@@ -275,6 +283,79 @@ static PACKET_TARGET unsigned pk_fill(pk_packet *p, const rt_ray_setup *const *r
     return usable & (n >= 32 ? ~0u : (1u << n) - 1);
 }
 
+#if PACKET_VEC == 32 && RT_BVH_WIDTH == 8 && PACKET_NF == 1
+#define PK_FRUSTUM 1
+typedef float pk_row __attribute__((vector_size(32), aligned(4), may_alias)); /* a row of a node's boxes */
+
+/* A packet's frustum: for each axis the extremes over its lanes of the near and far
+ * origin bounds (the one that gives the smallest near and largest far distance) and of
+ * the reciprocals, each in every lane, so that one test of a node's eight boxes bounds
+ * every lane's entry from below and exit from above (pk_frustum_test). */
+typedef struct {
+    pk_f o_near[3], o_far[3], near_lo[3], near_hi[3], far_lo[3], far_hi[3], t_min;
+} pk_frustum;
+
+/* The smallest (or with `largest`, the largest) of x's lanes in `lanes`, in every lane. */
+__attribute__((always_inline)) static inline PACKET_TARGET pk_f pk_extreme(pk_f x, unsigned lanes, bool largest)
+{
+    const pk_i bit = {1, 2, 4, 8, 16, 32, 64, 128};
+    pk_i in = (bit & (int)lanes) != 0;
+    pk_f fill = PK_ALLF(largest ? -__builtin_inff() : __builtin_inff());
+    return pk_across((pk_f)(((pk_i)x & in) | ((pk_i)fill & ~in)), largest);
+}
+
+/* The frustum of the packet's lanes in `lanes` (not 0), whose bounds pk_fill made. A
+ * lane's near distance on an axis is (b - o) i with its o and i; (b - O) rounds at or
+ * below every lane's b - o when O is the extreme o on that side (rounding is monotonic),
+ * and the product with either extreme reciprocal bounds the product with any between. */
+static PACKET_TARGET void pk_frustum_make(pk_frustum *f, const pk_packet *p, unsigned lanes)
+{
+    for (int k = 0; k < 3; k++) {
+        bool up = p->near[k] < p->far[k]; /* the direction is positive on axis k */
+        f->o_near[k] = pk_extreme(p->o_near[k][0], lanes, up);
+        f->o_far[k] = pk_extreme(p->o_far[k][0], lanes, !up);
+        f->near_lo[k] = pk_extreme(p->inv_near[k][0], lanes, false);
+        f->near_hi[k] = pk_extreme(p->inv_near[k][0], lanes, true);
+        f->far_lo[k] = pk_extreme(p->inv_far[k][0], lanes, false);
+        f->far_hi[k] = pk_extreme(p->inv_far[k][0], lanes, true);
+    }
+    f->t_min = pk_extreme(p->t_min_f[0], lanes, false);
+}
+
+/* Whether the n rays share their origin (a camera's rays): their frustum is narrow. */
+static bool pk_one_origin(const rt_ray_setup *const *rs, uint32_t n)
+{
+    rt_vec3 o = rs[0]->ray.origin;
+    for (uint32_t i = 1; i < n; i++) {
+        rt_vec3 q = rs[i]->ray.origin;
+        if (q.x != o.x || q.y != o.y || q.z != o.z) return false;
+    }
+    return true;
+}
+
+/* The node's children that some lane may enter before `far` (the largest of the lanes'
+ * best): a superset of every lane's own hits. Their entry distances, bounded from below
+ * for every lane, go to *near. */
+__attribute__((always_inline)) static inline PACKET_TARGET unsigned pk_frustum_test(const pk_frustum *f,
+                                                                                    const pk_packet *p,
+                                                                                    const rt_bvh_node *node, pk_f far,
+                                                                                    pk_f *near)
+{
+    const char *b = (const char *)node->box;
+    pk_f t = f->t_min;
+    for (int k = 0; k < 3; k++) {
+        pk_f a = *(const pk_row *)(b + p->near[k]) - f->o_near[k];
+        pk_f z = *(const pk_row *)(b + p->far[k]) - f->o_far[k];
+        t = PK_MAXF(t, PK_MINF(a * f->near_lo[k], a * f->near_hi[k]));
+        far = PK_MINF(far, PK_MAXF(z * f->far_lo[k], z * f->far_hi[k]));
+    }
+    *near = t;
+    return PK_MASKF((pk_i)(t <= far));
+}
+#else
+#define PK_FRUSTUM 0
+#endif
+
 /* Each wide level pushes at most RT_BVH_WIDTH - 1 children. */
 #define PK_STACK (RT_BVH_MAX_DEPTH * (RT_BVH_WIDTH - 1) + 1)
 
@@ -290,21 +371,51 @@ PACKET_TARGET unsigned PACKET_WALK(const rt_scene *scene, const rt_ray_setup *co
     pk_entry stack[PK_STACK];
     uint32_t top = 0, child = 0, count = 0, mask = alive;
     if (!alive) return 0;
+#if PK_FRUSTUM
+    pk_frustum f;
+    bool frustum = pk_one_origin(rs, n);
+    pk_f far = PK_ALLF(0.0f);
+    if (frustum) {
+        pk_frustum_make(&f, &p, alive);
+        far = pk_extreme(p.best[0], alive, true);
+    }
+#endif
     for (;;) {
         while (count == 0) {
             const rt_bvh_node *node = &nodes[child];
             pk_f t[RT_BVH_WIDTH][PACKET_NF];
             unsigned hits[RT_BVH_WIDTH];
             int order[RT_BVH_WIDTH], n_hit = 0; /* the hit children, nearest first */
-            /* Slots are filled from 0: the first unused one ends the node. */
-            for (int c = 0; c < RT_BVH_WIDTH && node->count[c] != RT_BVH_NO_CHILD; c++) {
-                hits[c] = pk_child(&p, node, c, t[c]) & mask;
-                if (hits[c]) order[n_hit++] = c;
+            float first[RT_BVH_WIDTH];
+#if PK_FRUSTUM
+            if (frustum) {
+                pk_f near;
+                for (unsigned in = pk_frustum_test(&f, &p, node, far, &near); in; in &= in - 1) {
+                    int c = __builtin_ctz(in);
+                    if (node->count[c] == RT_BVH_NO_CHILD) continue;
+                    if (node->count[c] > 0) { /* a leaf: its lanes, each by its own test */
+                        hits[c] = pk_child(&p, node, c, t[c]) & mask;
+                        if (!hits[c]) continue;
+                    } else {
+                        hits[c] = mask;
+                        t[c][0] = PK_ALLF(near[c]);
+                    }
+                    first[c] = near[c];
+                    order[n_hit++] = c;
+                }
+            } else
+#endif
+            {
+                /* Slots are filled from 0: the first unused one ends the node. */
+                for (int c = 0; c < RT_BVH_WIDTH && node->count[c] != RT_BVH_NO_CHILD; c++) {
+                    hits[c] = pk_child(&p, node, c, t[c]) & mask;
+                    if (hits[c]) order[n_hit++] = c;
+                }
+                if (n_hit > 1)
+                    for (int i = 0; i < n_hit; i++) first[order[i]] = pk_first(t[order[i]]);
             }
             if (!n_hit) goto pop;
             if (n_hit > 1) {
-                float first[RT_BVH_WIDTH];
-                for (int i = 0; i < n_hit; i++) first[order[i]] = pk_first(t[order[i]]);
                 for (int i = 1; i < n_hit; i++) {
                     int c = order[i], j = i;
                     for (; j > 0 && first[order[j - 1]] > first[c]; j--) order[j] = order[j - 1];
@@ -325,10 +436,13 @@ PACKET_TARGET unsigned PACKET_WALK(const rt_scene *scene, const rt_ray_setup *co
                 alive &= ~improved;
                 if (!alive) return taken;
             } else {
-                for (; improved; improved &= improved - 1) {
-                    int l = __builtin_ctz(improved);
+                for (unsigned m = improved; m; m &= m - 1) {
+                    int l = __builtin_ctz(m);
                     p.best[l / PACKET_LANES_F][l % PACKET_LANES_F] = float_outward(out[l].hit.t, true);
                 }
+#if PK_FRUSTUM
+                if (frustum && improved) far = pk_extreme(p.best[0], alive, true);
+#endif
             }
         }
     pop:
