@@ -3,7 +3,8 @@
  * rt_scene_nearest with and without the BVH must agree on hit or miss, on the
  * primitive (ties go to the lower reference) and on t, bit for bit; the stream queries
  * (packets) and the one-ray queries under every kernel the CPU runs must give each of
- * those rays what the build's own kernel gives it; and a build under a plan that splits
+ * those rays, and each of them again from the first one's origin, what the build's own
+ * kernel gives it; and a build under a plan that splits
  * the top of the tree level by level and bounds in small chunks must give the same tree,
  * byte for byte. */
 #include <math.h>
@@ -274,6 +275,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         check_ray(&s, ray);
         if (n_rays < MAX_STREAM) rays[n_rays++] = ray;
     }
+    check_streams(&s, rays, n_rays);
+    /* The same directions from the first ray's origin: packets from one origin take the
+     * avx2 kernel's frustum walk. */
+    for (uint32_t i = 1; i < n_rays; i++) rays[i].origin = rays[0].origin;
     check_streams(&s, rays, n_rays);
     return 0;
 }
