@@ -350,7 +350,7 @@ __attribute__((always_inline)) static inline PACKET_TARGET unsigned pk_frustum_t
         far = PK_MINF(far, PK_MAXF(z * f->far_lo[k], z * f->far_hi[k]));
     }
     *near = t;
-    return PK_MASKF((pk_i)(t <= far));
+    return PK_MASKF(t <= far);
 }
 #else
 #define PK_FRUSTUM 0
@@ -390,9 +390,9 @@ PACKET_TARGET unsigned PACKET_WALK(const rt_scene *scene, const rt_ray_setup *co
 #if PK_FRUSTUM
             if (frustum) {
                 pk_f near;
+                /* An unused slot's box is empty: no test enters it (docs/box-tests.md). */
                 for (unsigned in = pk_frustum_test(&f, &p, node, far, &near); in; in &= in - 1) {
                     int c = __builtin_ctz(in);
-                    if (node->count[c] == RT_BVH_NO_CHILD) continue;
                     if (node->count[c] > 0) { /* a leaf: its lanes, each by its own test */
                         hits[c] = pk_child(&p, node, c, t[c]) & mask;
                         if (!hits[c]) continue;
