@@ -39,11 +39,13 @@ for tool in parallel munged slurmctld slurmd sbatch; do
   command -v "$tool" >/dev/null || fail "$tool is not installed (make check-dist installs slurm-wlm munge parallel)"
 done
 
-# The two scenes and their settings: small enough that the whole check takes minutes.
+# The two scenes and their settings: small enough that the whole check takes minutes, and
+# the Monte Carlo parts, which the kill tests stop mid-render, slow enough (about 2 s of
+# one core each here) that a fast machine cannot finish one before the kill lands.
 corpus_scene=$corpus/trimeshes/chess.yaml
 corpus_opts=()
 mc_scene=$corpus/more/cornell_ray.yaml
-mc_opts=(--width 192 --height 192 --spp 16)
+mc_opts=(--width 192 --height 192 --spp 64)
 for scene in "$corpus_scene" "$mc_scene"; do
   [ -f "$scene" ] || fail "no $scene: the corpus is not under $corpus (set RTK_SHARED)"
 done
@@ -108,20 +110,36 @@ test_parallel() {
   expect_hash "$tmp/p/mc.ppm" "$want_mc" "parallel re-run over complete parts (nothing rendered)"
 }
 
+# True when process $1 has its SIGTERM handler in place (bit 15 - 1 of SigCgt): rtk has
+# started, so a signal now interrupts it rather than ending it before it can clean up.
+catches_term() {
+  local mask
+  mask=$(awk '/^SigCgt:/ { print $2 }' "/proc/$1/status" 2>/dev/null) && [ -n "$mask" ] &&
+    [ $((0x$mask >> 14 & 1)) = 1 ]
+}
+
+# Prints the pid of the rtk writing part $1 of $2 into folder $3, once it runs with its
+# handler in place and 0.25 s more, past the scene's load (milliseconds) and into the
+# render (about 2 s of one core here); fails after 120 s ($4 says under what).
+rendering_pid() {
+  local pattern pid start=$SECONDS
+  pattern="^${rtk//./\\.} render .*-o ${3//./\\.}/part-$1-of-$2\\.png"
+  until pid=$(pgrep -f -- "$pattern") && catches_term "$pid"; do
+    [ $((SECONDS - start)) -lt 120 ] || fail "part $1/$2 never started under $4"
+    sleep 0.02
+  done
+  sleep 0.25
+  echo "$pid"
+}
+
 # Kills the rtk rendering part $k of $n into $dir once it runs; the run must fail with
 # no frame, and a re-run must render part $k only.
 test_parallel_kill() {
   local want=$1 n=4 k=1 dir=$tmp/p/kill out=$tmp/p/kill.ppm
-  local pattern
-  pattern="^${rtk//./\\.} render .*-o ${dir//./\\.}/part-$k-of-$n\\.png"
   JOBS=2 setsid "$here/parallel/render.sh" "$mc_scene" $n "$dir" "$out" "${mc_opts[@]}" >"$tmp/kill.log" 2>&1 &
   background=$!
-  local pid="" start=$SECONDS
-  until pid=$(pgrep -f -- "$pattern"); do
-    [ $((SECONDS - start)) -lt 120 ] || fail "part $k/$n never started under parallel"
-    sleep 0.05
-  done
-  sleep 0.3
+  local pid
+  pid=$(rendering_pid $k $n "$dir" parallel)
   kill -TERM "$pid" 2>/dev/null || fail "part $k/$n finished before it could be killed: make the parts bigger"
   local rc=0
   wait "$background" || rc=$?
@@ -196,16 +214,12 @@ test_slurm() {
 # frame; a re-submission must queue part $k alone and stitch the same frame.
 test_slurm_kill() {
   local want=$1 n=4 k=1 dir=$tmp/s/kill out=$tmp/s/kill.ppm
-  local sub array stitch start=$SECONDS
+  local sub array stitch
   sub=$(submit "$mc_scene" $n "$dir" "$out" "${mc_opts[@]}")
   array=$(field array 2 "$sub")
   stitch=$(field stitch 2 "$sub")
   [ "$(field array 4 "$sub")" = "0-$((n - 1))" ] || fail "the first submission queued parts '$(field array 4 "$sub")'"
-  until [ "$(job_states "${array}_$k")" = RUNNING ]; do
-    [ $((SECONDS - start)) -lt 120 ] || fail "array task ${array}_$k never ran (state '$(job_states "${array}_$k")')"
-    sleep 0.05
-  done
-  sleep 0.3
+  rendering_pid $k $n "$dir" Slurm >/dev/null
   scancel "${array}_$k"
   wait_done "$array" 300
   wait_done "$stitch" 60
