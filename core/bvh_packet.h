@@ -352,6 +352,85 @@ __attribute__((always_inline)) static inline PACKET_TARGET unsigned pk_frustum_t
     *near = t;
     return PK_MASKF(t <= far);
 }
+
+/* The frustum of rays that end where they share a point (a point light's shadow rays,
+ * each from its own hit point): its apex a box around their far ends o + t_max d, the
+ * directions reversed, distances s = t_max - t measured from the apex. Bounds every
+ * lane's exact double test (docs/box-tests.md, "Shadow rays' frustum"). */
+typedef struct {
+    pk_f o_near[3], o_far[3], inv_lo[3], inv_hi[3];
+} pk_end_frustum;
+
+/* Rays whose ends lie within this fraction of the longest segment share one end. */
+#define PK_END_SPREAD 0x1p-10
+
+/* Makes the frustum of the rays in `lanes` (not 0) from their far ends, and in *reach the
+ * longest segment rounded up; false when they do not share an end, or when its distances
+ * could leave the float range. */
+static PACKET_TARGET bool pk_end_frustum_make(pk_end_frustum *f, const pk_packet *p, const rt_ray_setup *const *rs,
+                                              unsigned lanes, rt_real extent, pk_f *reach_f)
+{
+    const double inf = __builtin_inf();
+    double lo[3] = {inf, inf, inf}, hi[3] = {-inf, -inf, -inf}, reach = 0, inv = 0;
+    for (unsigned m = lanes; m; m &= m - 1) {
+        const rt_ray_setup *q = rs[__builtin_ctz(m)];
+        const rt_ray *r = &q->ray;
+        const double o[3] = {r->origin.x, r->origin.y, r->origin.z};
+        const double d[3] = {r->direction.x, r->direction.y, r->direction.z};
+        for (int k = 0; k < 3; k++) {
+            /* The far end, padded beyond its own rounding and the double test's (2^-50.4). */
+            double td = r->t_max * d[k], end = o[k] + td, pad = (rt_magnitude(o[k]) + rt_magnitude(td)) * 0x1p-48;
+            lo[k] = rt_min(lo[k], end - pad);
+            hi[k] = rt_max(hi[k], end + pad);
+            inv = rt_max(inv, rt_magnitude(rt_v3_get(q->inv_direction, k)));
+        }
+        reach = rt_max(reach, r->t_max - r->t_min);
+    }
+    double spread = 0, apex = 0;
+    for (int k = 0; k < 3; k++) {
+        spread = rt_max(spread, hi[k] - lo[k]);
+        apex = rt_max(apex, rt_max(rt_magnitude(lo[k]), rt_magnitude(hi[k])));
+    }
+    /* (A ray without an end, t_max = RT_REAL_MAX, fails the first test or its NaNs the others.) */
+    if (!(reach <= 0x1p100 && spread <= reach * PK_END_SPREAD && (extent + apex) * inv <= 0x1p119)) return false;
+    *reach_f = PK_ALLF(float_outward(reach, true));
+    for (int k = 0; k < 3; k++) {
+        /* Reversed, a positive direction is negative: the near distance (p - a) r is least
+         * at the apex's lowest a, the far one largest at its highest. */
+        bool up = p->near[k] < p->far[k];
+        float a_lo = float_outward(lo[k], false), a_hi = float_outward(hi[k], true);
+        f->o_near[k] = PK_ALLF(up ? a_lo : a_hi);
+        f->o_far[k] = PK_ALLF(up ? a_hi : a_lo);
+        /* The lanes' float reciprocals bracket 1 / d; negated, and widened by 2^-20 beyond
+         * the test's roundings. */
+        pk_f r0 = -p->inv_near[k][0], r1 = -p->inv_far[k][0];
+        pk_f r_lo = pk_extreme(PK_MINF(r0, r1), lanes, false), r_hi = pk_extreme(PK_MAXF(r0, r1), lanes, true);
+        f->inv_lo[k] = r_lo * PK_ALLF(up ? 1.0f + 0x1p-20f : 1.0f - 0x1p-20f);
+        f->inv_hi[k] = r_hi * PK_ALLF(up ? 1.0f - 0x1p-20f : 1.0f + 0x1p-20f);
+    }
+    return true;
+}
+
+/* The node's children that some lane's segment may cross (reach: from make): a superset
+ * of every lane's own hits. Their exit distances from the apex (bounded from above) go to
+ * *exit. A reversed direction's near planes are the forward far ones. */
+__attribute__((always_inline)) static inline PACKET_TARGET unsigned pk_end_frustum_test(const pk_end_frustum *f,
+                                                                                        const pk_packet *p,
+                                                                                        const rt_bvh_node *node,
+                                                                                        pk_f reach, pk_f *exit)
+{
+    const char *b = (const char *)node->box;
+    pk_f t = PK_ALLF(0.0f), far = reach;
+    for (int k = 0; k < 3; k++) {
+        pk_f a = *(const pk_row *)(b + p->far[k]) - f->o_near[k];
+        pk_f z = *(const pk_row *)(b + p->near[k]) - f->o_far[k];
+        t = PK_MAXF(t, PK_MINF(a * f->inv_lo[k], a * f->inv_hi[k]));
+        far = PK_MINF(far, PK_MAXF(z * f->inv_lo[k], z * f->inv_hi[k]));
+    }
+    *exit = far;
+    /* 2^-100 of slack for the products that underflow (their error is absolute). */
+    return PK_MASKF(t <= far + PK_ALLF(0x1p-100f));
+}
 #else
 #define PK_FRUSTUM 0
 #endif
@@ -380,12 +459,15 @@ PACKET_TARGET unsigned PACKET_WALK(const rt_scene *scene, const rt_ray_setup *co
     uint32_t top = 0, child = 0, count = 0, mask = alive;
     if (!alive) return 0;
 #if PK_FRUSTUM
-    pk_frustum f;
-    bool frustum = pk_one_origin(rs, n);
-    pk_f far = PK_ALLF(0.0f);
+    pk_frustum f;             /* of rays from one origin (a tile's camera rays) */
+    pk_end_frustum g;         /* of rays to one end (a point light's shadow rays) */
+    pk_f far = PK_ALLF(0.0f); /* where the frustum ends: the lanes' largest best, or reach */
+    bool frustum = pk_one_origin(rs, n), to_end = false;
     if (frustum) {
         pk_frustum_make(&f, &p, alive);
         far = pk_extreme(p.best[0], alive, true);
+    } else if (any) {
+        to_end = pk_end_frustum_make(&g, &p, rs, alive, scene->bvh.extent, &far);
     }
 #endif
     for (;;) {
@@ -409,6 +491,17 @@ PACKET_TARGET unsigned PACKET_WALK(const rt_scene *scene, const rt_ray_setup *co
                         t[c][0] = PK_ALLF(near[c]);
                     }
                     first[c] = near[c];
+                    order[n_hit++] = c;
+                }
+            } else if (to_end) {
+                pk_f exit;
+                /* Each child the frustum lets through gets its lanes' own test; the one
+                 * that leaves the frustum last, nearest the rays' origins, goes first. */
+                for (unsigned in = pk_end_frustum_test(&g, &p, node, far, &exit); in; in &= in - 1) {
+                    int c = __builtin_ctz(in);
+                    hits[c] = pk_child(&p, node, c, t[c]) & mask;
+                    if (!hits[c]) continue;
+                    first[c] = -exit[c];
                     order[n_hit++] = c;
                 }
             } else

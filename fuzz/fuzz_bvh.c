@@ -3,10 +3,10 @@
  * rt_scene_nearest with and without the BVH must agree on hit or miss, on the
  * primitive (ties go to the lower reference) and on t, bit for bit; the stream queries
  * (packets) and the one-ray queries under every kernel the CPU runs must give each of
- * those rays, and each of them again from the first one's origin, what the build's own
- * kernel gives it; and a build under a plan that splits
- * the top of the tree level by level and bounds in small chunks must give the same tree,
- * byte for byte. */
+ * those rays, each of them again from the first one's origin, and segments from their
+ * origins to one end, what the build's own kernel gives it; and a build under a plan
+ * that splits the top of the tree level by level and bounds in small chunks must give
+ * the same tree, byte for byte. */
 #include <math.h>
 #include <string.h>
 
@@ -265,6 +265,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     /* The plan comes from the layout byte's unused bits, so the seeds keep their rays. */
     check_plan(&s, (rt_bvh_plan){1 + (layout >> 1) % 8, 1 + (layout >> 4)});
     static rt_ray rays[MAX_STREAM];
+    static rt_vec3 origins[MAX_STREAM];
+    rt_vec3 end = rt_v3(RT_ZERO, RT_ZERO, RT_ZERO);
     uint32_t n_rays = 0;
     while (in.pos < in.size) {
         uint8_t kind = fz_u8(&in) % 4;
@@ -273,12 +275,24 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         rt_ray ray = kind == 2 ? fz_ray_axis(&in, target) : fz_ray_through(&in, target);
         ray.origin = rt_v3_madd(target, ray.direction, rt_from_double(-range * fz_pow2(&in, -3, 3)));
         check_ray(&s, ray);
+        if (n_rays == 0) end = target;
         if (n_rays < MAX_STREAM) rays[n_rays++] = ray;
     }
+    for (uint32_t i = 0; i < n_rays; i++) origins[i] = rays[i].origin;
     check_streams(&s, rays, n_rays);
     /* The same directions from the first ray's origin: packets from one origin take the
      * avx2 kernel's frustum walk. */
     for (uint32_t i = 1; i < n_rays; i++) rays[i].origin = rays[0].origin;
     check_streams(&s, rays, n_rays);
+    /* Segments from each ray's own origin to the first one's target, as a point light's
+     * shadow rays: packets of them take the frustum from their shared end. */
+    uint32_t n_segments = 0;
+    for (uint32_t i = 0; i < n_rays; i++) {
+        rt_vec3 delta = rt_v3_sub(end, origins[i]);
+        rt_real length = rt_v3_length(delta);
+        if (!(length > RT_HIT_EPSILON)) continue;
+        rays[n_segments++] = (rt_ray){origins[i], rt_v3_scale(delta, rt_div(RT_ONE, length)), RT_HIT_EPSILON, length};
+    }
+    check_streams(&s, rays, n_segments);
     return 0;
 }

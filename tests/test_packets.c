@@ -84,13 +84,36 @@ static bool same_hit(const rt_prim_hit *a, const rt_prim_hit *b)
 
 #define RAYS 4096
 
+/* Segments from origins near `from` (within spread) to one end (like a point light's
+ * shadow rays from a tile's hit points), n of them from ray i on; a few fall short of the
+ * end, so that the rays do not share it. */
+static uint32_t to_one_end(rt_ray_setup *rs, uint32_t i, uint32_t n, rt_vec3 from, double spread)
+{
+    rt_vec3 end = rt_v3(next_range(-12, 12), next_range(-12, 12), next_range(-12, 12));
+    for (uint32_t k = 0; k < n && i < RAYS; k++, i++) {
+        rt_vec3 o = rt_v3_add(
+            from, rt_v3(next_range(-spread, spread), next_range(-spread, spread), next_range(-spread, spread)));
+        rt_vec3 delta = rt_v3_sub(end, o);
+        rt_real length = rt_v3_length(delta);
+        rt_ray r = {o, rt_v3_scale(delta, rt_div(RT_ONE, length)), RT_HIT_EPSILON,
+                    i % 37 == 0 ? rt_half(length) : length};
+        rs[i] = rt_intersect_prepare(r);
+    }
+    return i;
+}
+
 /* Bundles of 1 to 64 rays from one origin into a narrow cone (like a tile's camera rays)
  * or a wide one, with segments (shadow rays), a few starting at t = 0 and a few with a
- * zero direction component (rays the float bounds do not take). */
+ * zero direction component (rays the float bounds do not take); and bundles of segments
+ * to one end. */
 static void bundles(rt_ray_setup *rs)
 {
     for (uint32_t i = 0; i < RAYS;) {
         rt_vec3 o = rt_v3(next_range(-20, 20), next_range(-20, 20), next_range(-20, 20));
+        if (next_unit() < 0.25) {
+            i = to_one_end(rs, i, 1 + (uint32_t)(next_unit() * 64), o, next_unit() < 0.5 ? 0.5 : 8);
+            continue;
+        }
         rt_vec3 aim = rt_v3_normalize(rt_v3_sub(rt_v3(next_range(-5, 5), next_range(-5, 5), next_range(-5, 5)), o));
         double spread = next_unit() < 0.7 ? 0.02 : 0.8;
         uint32_t n = 1 + (uint32_t)(next_unit() * 64);
