@@ -260,6 +260,7 @@ typedef struct {
      * scratch per worker to collapse wide roots of up to block_refs references (NULL:
      * the final collapse makes every wide node). */
     build_task *subtrees;
+    uint32_t subtree_count;
     uint32_t *subtree_inner;
     build_task *stacks;
     unsigned char *block_scratch;
@@ -523,7 +524,24 @@ static uint32_t build_binary(build *b, rt_arena *arena, uint32_t n)
     alloc_block_scratch(b, arena, subtrees);
     rt_workers_run(b->workers, subtree_job, b, subtrees);
     for (uint32_t s = 0; s < subtrees; s++) inner += b->subtree_inner[s];
+    b->subtree_count = subtrees;
     return inner;
+}
+
+/* The wide tree's move down from scratch, in jobs of MOVE_CHUNK nodes (256 KiB). */
+#define MOVE_CHUNK 1024
+typedef struct {
+    const rt_bvh_node *from;
+    rt_bvh_node *to;
+    uint32_t count;
+} node_move;
+
+static void move_nodes_job(void *arg, uint32_t index, uint32_t worker)
+{
+    (void)worker;
+    const node_move *m = arg;
+    uint32_t first = index * MOVE_CHUNK;
+    __builtin_memcpy(m->to + first, m->from + first, min_u32(MOVE_CHUNK, m->count - first) * sizeof(rt_bvh_node));
 }
 
 /* The binary tree and the wide one are made in scratch above the arena's mark; then the
@@ -556,14 +574,19 @@ rt_status rt_bvh_build_planned(rt_scene *scene, rt_arena *arena, const rt_worker
     /* Only the binary tree is read from here on: the wide tree is made over the references
      * and the rest of the scratch, memory already touched. */
     rt_arena_reset(arena, past_nodes);
-    rt_status st = rt_bvh_collapse(b.nodes, inner, bvh, arena);
+    /* Each block collapsed already is a subtree's. */
+    rt_status st = rt_bvh_collapse(b.nodes, inner, b.subtree_count, bvh, arena, workers);
     if (st != RT_OK) return st;
-    const rt_bvh_node *wide = bvh->nodes;
+    node_move move = {bvh->nodes, NULL, bvh->node_count};
     rt_arena_reset(arena, mark);
-    bvh->nodes = rt_arena_alloc_aligned(arena, bvh->node_count * sizeof(rt_bvh_node), 64);
-    /* Down from the scratch copy, which starts past the binary tree: for a small tree
-     * less than a node past the destination, so the two may overlap. */
-    __builtin_memmove(bvh->nodes, wide, bvh->node_count * sizeof(rt_bvh_node));
+    move.to = rt_arena_alloc_aligned(arena, bvh->node_count * sizeof(rt_bvh_node), 64);
+    bvh->nodes = move.to;
+    /* Down from the scratch copy, which starts past the binary tree: in parallel when the
+     * two do not overlap, as for a large tree; a small one is less than a node past. */
+    if (move.to + move.count <= move.from)
+        rt_workers_run(workers, move_nodes_job, &move, (move.count - 1) / MOVE_CHUNK + 1);
+    else
+        __builtin_memmove(move.to, move.from, move.count * sizeof(rt_bvh_node));
     return RT_OK;
 }
 

@@ -39,8 +39,10 @@ void rt_bvh_store_box(rt_bound box[6], rt_aabb b, int grid);
 
 /* Collapses the binary tree at bin (root node 0, `inner` inner nodes) into the wide
  * tree on bvh->grid: bvh->nodes (in the arena, 64-byte aligned), node_count, depth. The
- * blocks of wide roots collapsed already are copied in. */
-rt_status rt_bvh_collapse(const rt_bin_node *bin, uint32_t inner, rt_bvh *bvh, rt_arena *arena);
+ * blocks of wide roots collapsed already (at most `blocks` of them) are copied in by
+ * jobs on the workers. */
+rt_status rt_bvh_collapse(const rt_bin_node *bin, uint32_t inner, uint32_t blocks, rt_bvh *bvh, rt_arena *arena,
+                          const rt_workers *workers);
 
 /* Bytes of scratch one worker needs to collapse wide roots of up to `refs` references. */
 size_t rt_bvh_block_scratch_size(uint32_t refs);

@@ -102,27 +102,47 @@ static bool take_nodes(wide_nodes *w, uint32_t k)
     return true;
 }
 
-/* Copies wide root t's block (RT_BIN_COLLAPSED) into w: its node 0 at t.wide, the others
- * as the next nodes, in their order, which is the one the collapse would give them. */
-static bool copy_block(const rt_bin_node *bin, collapse_task t, wide_nodes *w, uint32_t *depth)
+/* A wide root's block (RT_BIN_COLLAPSED) met by the final collapse, which gives it its
+ * place: its node 0 at `wide`, the others as the nodes from `base` on, in their order,
+ * which is the one the collapse would give them. Blocks are copied after the walk, in
+ * jobs of their own (rt_bvh_collapse). */
+typedef struct {
+    uint32_t bin, wide, base;
+} block_copy;
+
+typedef struct {
+    block_copy *items;
+    uint32_t count, cap;
+} block_list;
+
+/* Takes the places of wide root t's block in w and lists it in `blocks` for its copy. */
+static bool place_block(const rt_bin_node *bin, collapse_task t, wide_nodes *w, block_list *blocks, uint32_t *depth)
 {
     uint32_t head = bin[t.bin].first, count = bin[head].first, base = w->count;
-    if (!take_nodes(w, count - 1)) return false;
-    const unsigned char *from = (const unsigned char *)&bin[head + 1];
-    for (uint32_t k = 0; k < count; k++) {
-        rt_bvh_node *node = &w->nodes[k == 0 ? t.wide : base + k - 1];
-        __builtin_memcpy(node, from + (size_t)k * sizeof(rt_bvh_node), sizeof(rt_bvh_node));
-        for (int c = 0; c < RT_BVH_WIDTH; c++)
-            if (node->count[c] == 0) node->child[c] += base - 1;
-    }
+    if (blocks->count == blocks->cap || !take_nodes(w, count - 1)) return false;
+    blocks->items[blocks->count++] = (block_copy){t.bin, t.wide, base};
     if (t.depth + bin[head].count - 1 > *depth) *depth = t.depth + bin[head].count - 1;
     return true;
 }
 
+/* Copies a placed block into the nodes of the tree. */
+static void copy_block(const rt_bin_node *bin, block_copy b, rt_bvh_node *nodes)
+{
+    uint32_t head = bin[b.bin].first, count = bin[head].first;
+    const unsigned char *from = (const unsigned char *)&bin[head + 1];
+    for (uint32_t k = 0; k < count; k++) {
+        rt_bvh_node *node = &nodes[k == 0 ? b.wide : b.base + k - 1];
+        __builtin_memcpy(node, from + (size_t)k * sizeof(rt_bvh_node), sizeof(rt_bvh_node));
+        for (int c = 0; c < RT_BVH_WIDTH; c++)
+            if (node->count[c] == 0) node->child[c] += b.base - 1;
+    }
+}
+
 /* Wide nodes are numbered depth first from w's node `wide` (taken), made from binary node
- * `root`; returns false when w is full. */
+ * `root`, and the blocks met placed and listed in `blocks`; returns false when w or
+ * `blocks` is full. */
 static bool collapse(const rt_bin_node *bin, uint32_t root, int grid, wide_nodes *w, collapse_task *stack,
-                     uint32_t *depth)
+                     block_list *blocks, uint32_t *depth)
 {
     uint32_t top = 0;
     stack[top++] = (collapse_task){root, w->count - 1, 1};
@@ -130,7 +150,7 @@ static bool collapse(const rt_bin_node *bin, uint32_t root, int grid, wide_nodes
     while (top > 0) {
         collapse_task t = stack[--top];
         if (bin[t.bin].count == RT_BIN_COLLAPSED) {
-            if (!copy_block(bin, t, w, depth)) return false;
+            if (!place_block(bin, t, w, blocks, depth)) return false;
             continue;
         }
         rt_bvh_node *node = &w->nodes[t.wide];
@@ -161,14 +181,31 @@ static bool collapse(const rt_bin_node *bin, uint32_t root, int grid, wide_nodes
     return true;
 }
 
-rt_status rt_bvh_collapse(const rt_bin_node *bin, uint32_t inner, rt_bvh *bvh, rt_arena *arena)
+typedef struct {
+    const rt_bin_node *bin;
+    const block_list *blocks;
+    rt_bvh_node *nodes;
+} copy_jobs;
+
+static void copy_block_job(void *arg, uint32_t index, uint32_t worker)
+{
+    (void)worker;
+    const copy_jobs *j = arg;
+    copy_block(j->bin, j->blocks->items[index], j->nodes);
+}
+
+rt_status rt_bvh_collapse(const rt_bin_node *bin, uint32_t inner, uint32_t blocks, rt_bvh *bvh, rt_arena *arena,
+                          const rt_workers *workers)
 {
     collapse_task *stack = RT_NEW_ARRAY(arena, collapse_task, COLLAPSE_STACK);
-    bvh->nodes = stack ? rt_arena_alloc_aligned(arena, sizeof(rt_bvh_node), 64) : NULL; /* node 0 */
+    block_list list = {RT_NEW_ARRAY(arena, block_copy, blocks > 0 ? blocks : 1), 0, blocks};
+    bvh->nodes = stack && list.items ? rt_arena_alloc_aligned(arena, sizeof(rt_bvh_node), 64) : NULL; /* node 0 */
     if (!bvh->nodes) return RT_ERR_NOMEM;
     wide_nodes w = {bvh->nodes, 1, 0, arena};
-    if (!collapse(bin, 0, bvh->grid, &w, stack, &bvh->depth)) return RT_ERR_NOMEM;
+    if (!collapse(bin, 0, bvh->grid, &w, stack, &list, &bvh->depth)) return RT_ERR_NOMEM;
     bvh->node_count = w.count;
+    copy_jobs jobs = {bin, &list, bvh->nodes};
+    rt_workers_run(workers, copy_block_job, &jobs, list.count);
     /* At most one wide node per binary inner node, or one (checked in the asserts build). */
     (void)inner;
     RT_ASSERT(bvh->node_count <= inner + 1);
@@ -192,7 +229,8 @@ void rt_bvh_collapse_block(rt_bin_node *bin, uint32_t root, uint32_t first, uint
 {
     uint32_t room = block_room(count < scratch_refs ? count : scratch_refs), depth;
     wide_nodes w = {(rt_bvh_node *)((unsigned char *)scratch + BLOCK_STACK_BYTES), 1, room, NULL};
-    if (room < 1 || !collapse(bin, root, grid, &w, scratch, &depth)) return;
+    block_list none = {NULL, 0, 0}; /* a wide root holds no other */
+    if (room < 1 || !collapse(bin, root, grid, &w, scratch, &none, &depth)) return;
     uint32_t head = 2 * first + 1;
     __builtin_memcpy(&bin[head + 1], w.nodes, (size_t)w.count * sizeof(rt_bvh_node));
     bin[head].first = w.count;
