@@ -266,6 +266,9 @@ typedef struct {
     unsigned char *block_scratch;
     size_t block_scratch_size;
     uint32_t block_refs;
+    /* The tasks of the level being partitioned in chunks, and after them the jobs that
+     * touch the binary tree's scratch ahead (touch_job), while the root is partitioned. */
+    uint32_t level_count, touch_jobs;
 } build;
 
 /* A subtree's stack: each split pushes two tasks and pops one, once per level. */
@@ -375,10 +378,31 @@ static void bin_chunk_job(void *arg, uint32_t index, uint32_t worker)
     bin_refs(&c->bins, &b->level_binning[c->task], b->refs, c->first, c->count);
 }
 
+/* The binary tree's scratch is first written all over by the top levels' nodes and the
+ * subtrees, each first write into a page a page fault (docs/performance.md, "Page
+ * faults"). While one worker partitions the root, the others write a byte every
+ * TOUCH_STRIDE of it ahead: with huge pages (2 MiB) that faults every page the build
+ * would, with small ones a few. The slots touched are written again before they are read. */
+#define TOUCH_STRIDE ((size_t)2 << 20)
+#define TOUCH_JOB_BYTES (4 * TOUCH_STRIDE)
+
+static void touch_job(const build *b, uint32_t index)
+{
+    volatile unsigned char *scratch = (volatile unsigned char *)b->nodes;
+    size_t size = (2 * (size_t)b->scene->prim_count - 1) * sizeof *b->nodes, first = index * TOUCH_JOB_BYTES;
+    /* Not the root's slot (offset 0), which the partition's job writes meanwhile. */
+    for (size_t at = first > 0 ? first : TOUCH_STRIDE; at < first + TOUCH_JOB_BYTES && at < size; at += TOUCH_STRIDE)
+        scratch[at] = 0;
+}
+
 static void partition_job(void *arg, uint32_t index, uint32_t worker)
 {
     (void)worker;
     build *b = arg;
+    if (index >= b->level_count) {
+        touch_job(b, index - b->level_count);
+        return;
+    }
     make_node(b, &b->level[index], b->level_splits[index] ? &b->level_split[index] : NULL, NULL,
               &b->children[2 * index]);
 }
@@ -422,7 +446,9 @@ static void split_level_in_chunks(build *b, uint32_t count)
         while (c < chunks && b->chunks[c].task == t) merge_bins(all, &b->chunks[c++].bins);
         b->level_splits[t] = price_split(&b->level[t], &b->level_binning[t], all, &b->level_split[t]);
     }
-    rt_workers_run(b->workers, partition_job, b, count);
+    b->level_count = count;
+    rt_workers_run(b->workers, partition_job, b, count + b->touch_jobs);
+    b->touch_jobs = 0;
 }
 
 /* Splits one level of top tasks (b->level[0 .. count)). With at least as many tasks as
@@ -516,9 +542,11 @@ static uint32_t build_binary(build *b, rt_arena *arena, uint32_t n)
     b->extent = aabb_magnitude(root.bounds);
     b->grid = rt_bound_grid(b->extent);
     uint32_t inner = 0, subtrees = 0, level = 0;
-    if (is_top(b, &root))
+    if (is_top(b, &root)) {
         b->level[level++] = root;
-    else
+        size_t scratch = (2 * (size_t)n - 1) * sizeof *b->nodes;
+        if (rt_workers_count(b->workers) > 1) b->touch_jobs = (uint32_t)((scratch - 1) / TOUCH_JOB_BYTES + 1);
+    } else
         b->subtrees[subtrees++] = root;
     while (level > 0) level = split_level(b, level, &subtrees, &inner);
     alloc_block_scratch(b, arena, subtrees);
