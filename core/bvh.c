@@ -451,6 +451,24 @@ static void split_level_in_chunks(build *b, uint32_t count)
     b->touch_jobs = 0;
 }
 
+/* Whether task a is handed out before b: the larger first, then by first reference. */
+static bool runs_before(const build_task *a, const build_task *b)
+{
+    return a->count > b->count || (a->count == b->count && a->first < b->first);
+}
+
+/* Orders a level's tasks largest first, so that jobs handed out in index order finish
+ * together; the tree does not depend on the order (nodes' slots follow from the split). */
+static void order_largest_first(build_task *level, uint32_t count)
+{
+    for (uint32_t i = 1; i < count; i++) {
+        build_task t = level[i];
+        uint32_t j = i;
+        for (; j > 0 && runs_before(&t, &level[j - 1]); j--) level[j] = level[j - 1];
+        level[j] = t;
+    }
+}
+
 /* Splits one level of top tasks (b->level[0 .. count)). With at least as many tasks as
  * workers, one job bins, prices and partitions each task, so that the partition finds
  * the references in the caches of the core that binned them; fewer are binned in chunks
@@ -459,10 +477,12 @@ static void split_level_in_chunks(build *b, uint32_t count)
  * join the subtrees. */
 static uint32_t split_level(build *b, uint32_t count, uint32_t *subtrees, uint32_t *inner)
 {
-    if (count < rt_workers_count(b->workers))
+    if (count < rt_workers_count(b->workers)) {
         split_level_in_chunks(b, count);
-    else
+    } else {
+        order_largest_first(b->level, count);
         rt_workers_run(b->workers, split_task_job, b, count);
+    }
     uint32_t next = 0;
     for (uint32_t t = 0; t < count; t++) {
         if (!b->level_splits[t]) continue;
