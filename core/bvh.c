@@ -242,6 +242,7 @@ typedef struct {
     rt_bvh_plan plan;
     build_ref *refs;
     rt_bin_node *nodes;
+    size_t nodes_size;   /* bytes: 2n - 1 slots */
     uint32_t *prim_refs; /* the tree's, written from refs as each part of it is made */
     rt_real extent;
     int grid;
@@ -389,9 +390,10 @@ static void bin_chunk_job(void *arg, uint32_t index, uint32_t worker)
 static void touch_job(const build *b, uint32_t index)
 {
     volatile unsigned char *scratch = (volatile unsigned char *)b->nodes;
-    size_t size = (2 * (size_t)b->scene->prim_count - 1) * sizeof *b->nodes, first = index * TOUCH_JOB_BYTES;
+    size_t first = index * TOUCH_JOB_BYTES;
     /* Not the root's slot (offset 0), which the partition's job writes meanwhile. */
-    for (size_t at = first > 0 ? first : TOUCH_STRIDE; at < first + TOUCH_JOB_BYTES && at < size; at += TOUCH_STRIDE)
+    for (size_t at = first > 0 ? first : TOUCH_STRIDE; at < first + TOUCH_JOB_BYTES && at < b->nodes_size;
+         at += TOUCH_STRIDE)
         scratch[at] = 0;
 }
 
@@ -564,8 +566,7 @@ static uint32_t build_binary(build *b, rt_arena *arena, uint32_t n)
     uint32_t inner = 0, subtrees = 0, level = 0;
     if (is_top(b, &root)) {
         b->level[level++] = root;
-        size_t scratch = (2 * (size_t)n - 1) * sizeof *b->nodes;
-        if (rt_workers_count(b->workers) > 1) b->touch_jobs = (uint32_t)((scratch - 1) / TOUCH_JOB_BYTES + 1);
+        if (rt_workers_count(b->workers) > 1) b->touch_jobs = (uint32_t)((b->nodes_size - 1) / TOUCH_JOB_BYTES + 1);
     } else
         b->subtrees[subtrees++] = root;
     while (level > 0) level = split_level(b, level, &subtrees, &inner);
@@ -608,7 +609,8 @@ rt_status rt_bvh_build_planned(rt_scene *scene, rt_arena *arena, const rt_worker
     build b = {.scene = scene, .workers = workers, .plan = plan, .prim_refs = bvh->prim_refs};
     size_t chunks = (n - 1) / plan.chunk + 1;
     /* Every node and reference is written before it is read: no zeroing. */
-    b.nodes = rt_arena_alloc(arena, (2 * (size_t)n - 1) * sizeof *b.nodes);
+    b.nodes_size = (2 * (size_t)n - 1) * sizeof *b.nodes;
+    b.nodes = rt_arena_alloc(arena, b.nodes_size);
     size_t past_nodes = rt_arena_mark(arena);
     b.refs = rt_arena_alloc(arena, (size_t)n * sizeof *b.refs);
     b.chunk_bounds = rt_arena_alloc(arena, chunks * sizeof *b.chunk_bounds);
