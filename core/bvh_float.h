@@ -61,8 +61,8 @@ static inline bool float_slab_prepare(const rt_ray_setup *rs, rt_real extent, fl
 }
 
 /* The one-ray walks (bvh_walk.h): rt_scene_nearest (any: rt_scene_any) for a ray the float
- * bounds take, with f from float_slab_prepare; the avx2 kernel's is the same code
- * compiled for AVX2. */
+ * bounds take, with f from float_slab_prepare; the avx2 kernel's (the avx512 kernel's
+ * too) is the same code compiled for AVX2. */
 bool rt_bvh_walk_sse2(const rt_scene *scene, const rt_ray_setup *rs, const float_slab *f, bool any, rt_scene_hit *out);
 bool rt_bvh_walk_avx2(const rt_scene *scene, const rt_ray_setup *rs, const float_slab *f, bool any, rt_scene_hit *out);
 
@@ -74,6 +74,8 @@ unsigned rt_bvh_packet_sse2(const rt_scene *scene, const rt_ray_setup *const *rs
                             rt_scene_hit *out, bool *found);
 unsigned rt_bvh_packet_avx2(const rt_scene *scene, const rt_ray_setup *const *rs, uint32_t n, bool any,
                             rt_scene_hit *out, bool *found);
+unsigned rt_bvh_packet_avx512(const rt_scene *scene, const rt_ray_setup *const *rs, uint32_t n, bool any,
+                              rt_scene_hit *out, bool *found);
 #else
 #define FLOAT_WALK 0
 #endif

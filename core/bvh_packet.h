@@ -9,25 +9,36 @@
  *
  * A template: the including file defines PACKET_VEC (vector bytes: 16 for SSE2, 32 for
  * AVX2), PACKET_TARGET (a function attribute, possibly empty) and PACKET_WALK (the name
- * of the entry point), after including bvh_float.h. */
+ * of the entry point), after including bvh_float.h; and may define PACKET_VEC_D, the
+ * bytes of the double vectors that hold the rays for the triangle tests (64: AVX-512,
+ * the whole packet in one vector; PACKET_VEC otherwise). */
 
+#ifndef PACKET_VEC_D
+#define PACKET_VEC_D PACKET_VEC
+#endif
 #define PACKET_LANES_F (PACKET_VEC / 4)        /* floats per vector */
-#define PACKET_LANES_D (PACKET_VEC / 8)        /* doubles per vector */
+#define PACKET_LANES_D (PACKET_VEC_D / 8)      /* doubles per vector */
 #define PACKET_NF (RT_PACKET / PACKET_LANES_F) /* float vectors per packet quantity */
 #define PACKET_ND (RT_PACKET / PACKET_LANES_D) /* double vectors per packet quantity */
 
 typedef float pk_f __attribute__((vector_size(PACKET_VEC)));
 typedef int32_t pk_i __attribute__((vector_size(PACKET_VEC)));
-typedef double pk_d __attribute__((vector_size(PACKET_VEC)));
-typedef int64_t pk_l __attribute__((vector_size(PACKET_VEC)));
+typedef double pk_d __attribute__((vector_size(PACKET_VEC_D)));
+typedef int64_t pk_l __attribute__((vector_size(PACKET_VEC_D)));
 
 #if PACKET_VEC == 32
 #define PK_MAXF __builtin_ia32_maxps256
 #define PK_MINF __builtin_ia32_minps256
 #define PK_MASKF(x) ((unsigned)__builtin_ia32_movmskps256((pk_f)(x)))
-#define PK_MASKD(x) ((unsigned)__builtin_ia32_movmskpd256((pk_d)(x)))
 #define PK_ALLF(x) ((pk_f){x, x, x, x, x, x, x, x})
+#if PACKET_VEC_D == 64
+typedef long long pk_ll __attribute__((vector_size(64))); /* the type AVX-512's builtins take */
+#define PK_MASKD(x) ((unsigned)__builtin_ia32_cvtq2mask512((pk_ll)(x)))
+#define PK_ALLD(x) ((pk_d){x, x, x, x, x, x, x, x})
+#else
+#define PK_MASKD(x) ((unsigned)__builtin_ia32_movmskpd256((pk_d)(x)))
 #define PK_ALLD(x) ((pk_d){x, x, x, x})
+#endif
 #else
 #define PK_MAXF __builtin_ia32_maxps
 #define PK_MINF __builtin_ia32_minps
@@ -35,6 +46,25 @@ typedef int64_t pk_l __attribute__((vector_size(PACKET_VEC)));
 #define PK_MASKD(x) ((unsigned)__builtin_ia32_movmskpd((pk_d)(x)))
 #define PK_ALLF(x) ((pk_f){x, x, x, x})
 #define PK_ALLD(x) ((pk_d){x, x})
+#endif
+/* The triangle tests' comparisons of double vectors, as pk_m lane masks: a vector of
+ * all-ones and zero lanes, or with AVX-512 a mask register's bits (a compare straight into
+ * a mask, as C's < and == would be, signalling and quiet); PK_BITS gives their bits. */
+#if PACKET_VEC_D == 64
+typedef unsigned pk_m;
+#define PK_CMPD(a, b, predicate) ((unsigned)__builtin_ia32_cmppd512_mask(a, b, predicate, (unsigned char)0xff, 4))
+#define PK_LTD(a, b) PK_CMPD(a, b, 0x01)
+#define PK_LED(a, b) PK_CMPD(a, b, 0x02)
+#define PK_GTD(a, b) PK_CMPD(a, b, 0x0e)
+#define PK_EQD(a, b) PK_CMPD(a, b, 0x00)
+#define PK_BITS(m) ((m)&0xffu)
+#else
+typedef pk_l pk_m;
+#define PK_LTD(a, b) ((a) < (b))
+#define PK_LED(a, b) ((a) <= (b))
+#define PK_GTD(a, b) ((a) > (b))
+#define PK_EQD(a, b) ((a) == (b))
+#define PK_BITS(m) PK_MASKD(m)
 #endif
 #ifdef __clang__
 #define PK_SHUFFLE(a, ...) __builtin_shufflevector(a, a, __VA_ARGS__)
@@ -136,16 +166,17 @@ __attribute__((always_inline)) static inline PACKET_TARGET unsigned pk_triangle(
     pk_d cx = (PK_ALLD(c[kx]) - p->origin[kx][v]) - p->sx[v] * cz;
     pk_d cy = (PK_ALLD(c[ky]) - p->origin[ky][v]) - p->sy[v] * cz;
     pk_d u = cx * by - cy * bx, vv = ax * cy - ay * cx, w = bx * ay - by * ax;
-    pk_l outside = ((u < zero) | (vv < zero) | (w < zero)) & ((u > zero) | (vv > zero) | (w > zero));
-    lanes &= ~PK_MASKD(outside);
+    pk_m outside =
+        (PK_LTD(u, zero) | PK_LTD(vv, zero) | PK_LTD(w, zero)) & (PK_GTD(u, zero) | PK_GTD(vv, zero) | PK_GTD(w, zero));
+    lanes &= ~PK_BITS(outside);
     if (!lanes) return 0;
     pk_d det = (u + vv) + w;
     pk_d extent_x = (pk_magnitude(ax) + pk_magnitude(bx)) + pk_magnitude(cx),
          extent_y = (pk_magnitude(ay) + pk_magnitude(by)) + pk_magnitude(cy);
     pk_d t = ((u * (p->sz[v] * az) + vv * (p->sz[v] * bz)) + w * (p->sz[v] * cz)) / det;
-    pk_l edge_on = pk_magnitude(det) <= (extent_x * extent_y) * PK_ALLD(1e-12);
-    pk_l inside = (t > p->t_min[v]) & (t < p->t_max[v]) & (t - t == zero);
-    lanes &= PK_MASKD(inside & ~edge_on);
+    pk_m edge_on = PK_LED(pk_magnitude(det), (extent_x * extent_y) * PK_ALLD(1e-12));
+    pk_m inside = PK_GTD(t, p->t_min[v]) & PK_LTD(t, p->t_max[v]) & PK_EQD(t - t, zero);
+    lanes &= PK_BITS(inside & ~edge_on);
     if (!lanes) return 0;
     pk_d b1 = vv / det, b2 = w / det;
     for (; lanes; lanes &= lanes - 1) {
@@ -211,10 +242,16 @@ __attribute__((noinline)) static PACKET_TARGET unsigned pk_leaf(const rt_scene *
     }
 }
 
-typedef float pk_half __attribute__((vector_size(PACKET_VEC / 2))); /* a double vector's lanes as floats */
-
 /* The float vector of packet lanes [w * PACKET_LANES_F, (w + 1) * PACKET_LANES_F) of a
  * quantity held in double vectors x: each lane rounded to float as a cast does. */
+#if PACKET_LANES_D == PACKET_LANES_F
+__attribute__((always_inline)) static inline PACKET_TARGET pk_f pk_floats(const pk_d x[PACKET_ND], int w)
+{
+    return __builtin_convertvector(x[w], pk_f);
+}
+#else
+typedef float pk_half __attribute__((vector_size(PACKET_VEC / 2))); /* a double vector's lanes as floats */
+
 __attribute__((always_inline)) static inline PACKET_TARGET pk_f pk_floats(const pk_d x[PACKET_ND], int w)
 {
     pk_half lo = __builtin_convertvector(x[2 * w], pk_half), hi = __builtin_convertvector(x[2 * w + 1], pk_half);
@@ -224,9 +261,14 @@ __attribute__((always_inline)) static inline PACKET_TARGET pk_f pk_floats(const 
     return __builtin_shufflevector(lo, hi, 0, 1, 2, 3);
 #endif
 }
+#endif
 
 /* The lanes of double vector v from a field of the lanes' rays r. */
-#if PACKET_VEC == 32
+#if PACKET_VEC_D == 64
+#define PK_GATHER(r, field)                                                                                          \
+    ((pk_d){(r)[0]->field, (r)[1]->field, (r)[2]->field, (r)[3]->field, (r)[4]->field, (r)[5]->field, (r)[6]->field, \
+            (r)[7]->field})
+#elif PACKET_VEC == 32
 #define PK_GATHER(r, field) ((pk_d){(r)[0]->field, (r)[1]->field, (r)[2]->field, (r)[3]->field})
 #else
 #define PK_GATHER(r, field) ((pk_d){(r)[0]->field, (r)[1]->field})

@@ -201,7 +201,8 @@ _Static_assert(sizeof(rt_bvh_node) == 32 * RT_BVH_WIDTH, "a BVH node is whole 64
 typedef enum {
     RT_KERNEL_PORTABLE, /* the general walk, one ray at a time */
     RT_KERNEL_SSE2,     /* float box tests (double build, x86), packets in 128-bit vectors */
-    RT_KERNEL_AVX2      /* the same with packets in 256-bit vectors */
+    RT_KERNEL_AVX2,     /* the same with packets in 256-bit vectors */
+    RT_KERNEL_AVX512    /* avx2's, with a packet's triangle tests in one 512-bit vector */
 } rt_kernel;
 
 typedef struct {

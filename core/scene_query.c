@@ -118,8 +118,8 @@ static bool walk(const rt_scene *scene, const rt_ray_setup *rs, bool any, rt_sce
     float_slab f;
     if (scene->bvh.kernel != RT_KERNEL_PORTABLE && scene->prim_count > 0 &&
         float_slab_prepare(rs, scene->bvh.extent, &f))
-        return scene->bvh.kernel == RT_KERNEL_AVX2 ? rt_bvh_walk_avx2(scene, rs, &f, any, out)
-                                                   : rt_bvh_walk_sse2(scene, rs, &f, any, out);
+        return scene->bvh.kernel == RT_KERNEL_SSE2 ? rt_bvh_walk_sse2(scene, rs, &f, any, out)
+                                                   : rt_bvh_walk_avx2(scene, rs, &f, any, out);
 #endif
     return nearest_bvh(scene, rs, any, out);
 }

@@ -139,11 +139,13 @@ static void check_ray(const rt_scene *s, rt_ray ray)
     }
 }
 
-/* The kernels this CPU runs (the core's own list, and for AVX2 the CPU's word). */
+/* The kernels this CPU runs (the core's own list, and for AVX2 and AVX-512 the CPU's word). */
 static bool kernel_runs(rt_kernel k)
 {
 #if defined(__x86_64__) || defined(__i386__)
-    if (k == RT_KERNEL_AVX2 && !__builtin_cpu_supports("avx2")) return false;
+    if (k >= RT_KERNEL_AVX2 && !__builtin_cpu_supports("avx2")) return false;
+    if (k == RT_KERNEL_AVX512 && !(__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq")))
+        return false;
 #endif
     return rt_bvh_kernel_compiled(k);
 }
@@ -190,7 +192,7 @@ static void check_streams(const rt_scene *s, const rt_ray *rays, uint32_t n)
         want.found[i] = rt_scene_nearest(s, &rs[i], true, &want.hit[i]);
         want.any[i] = rt_scene_any(s, &rs[i], true);
     }
-    for (rt_kernel k = RT_KERNEL_PORTABLE; k <= RT_KERNEL_AVX2; k++) {
+    for (rt_kernel k = RT_KERNEL_PORTABLE; k <= RT_KERNEL_AVX512; k++) {
         if (!kernel_runs(k)) continue;
         rt_scene copy = *s;
         FZ_CHECK(rt_bvh_set_kernel(&copy.bvh, k), "kernel %d refused", (int)k);

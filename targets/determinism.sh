@@ -6,8 +6,8 @@
 # change that moves every target together fails too:
 #   1. the host rtk at its default settings, with other thread counts and tiles, with
 #      --no-bvh (every primitive tested), and with each BVH kernel this CPU runs
-#      (--kernel portable, sse2, avx2: one ray at a time, packets in 128- and 256-bit
-#      vectors);
+#      (--kernel portable, sse2, avx2, avx512: one ray at a time, packets in 128- and
+#      256-bit vectors, a packet's triangle tests in 512-bit ones);
 #   2. the core alone (targets/hash_driver.c reading `rtk pack` blobs), built with gcc
 #      and clang at -O0/-O1/-O2/-O3/-Os, for i686 (-m32 -msse2 -mfpmath=sse), and
 #      cross-compiled for aarch64, riscv64 and big-endian s390x (run under qemu-user);
@@ -123,12 +123,16 @@ for real in $reals; do
   for s in "${scenes[@]}"; do "$rtk" pack "$(path_of "$s")" --width "$size" --height "$size" -o "$(blob_of "$real" "$s")"; done
   # The kernels the host runs (the fixed build has only the portable one).
   kernels=()
-  for k in portable sse2 avx2; do
-    "$rtk" render scenes/demo.yaml --width 4 --height 4 --hash --quiet --kernel $k >/dev/null 2>&1 && kernels+=("$k")
+  for k in portable sse2 avx2 avx512; do
+    if "$rtk" render scenes/demo.yaml --width 4 --height 4 --hash --quiet --kernel $k >/dev/null 2>&1; then
+      kernels+=("$k")
+    else
+      echo "$real: no cells for the $k kernel: this CPU or build does not run it"
+    fi
   done
   native_kernels=$(IFS=,; echo "${kernels[*]}")
-  # qemu runs no AVX2 here: a qemu-run x86 driver tries the others.
-  emulated_kernels=$(IFS=,; echo "${kernels[*]/avx2/}" | sed 's/,,*/,/g; s/,$//')
+  # qemu runs no AVX2 or AVX-512 here: a qemu-run x86 driver tries the others.
+  emulated_kernels=$(IFS=,; echo "${kernels[*]}" | sed 's/avx[0-9]*//g; s/,,*/,/g; s/,$//')
   # --no-bvh tests every primitive (64x64: brute force at full size takes minutes per mesh scene).
   mine=()
   opt_sets=("" "--threads 1" "--threads 2 --tile 16" "--threads 7 --tile 5" "--threads 3 --tile 64" "--no-bvh")

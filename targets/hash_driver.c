@@ -1,7 +1,7 @@
 /* Renders a scene blob (made by `rtk pack`) with nothing but the core and prints its
  * render hash. Built for every compiler, optimisation level and CPU of the determinism
  * matrix (targets/determinism.sh); it needs only a C library to read the file. An
- * optional third argument names the BVH kernel (portable, sse2, avx2; default: the
+ * optional third argument names the BVH kernel (portable, sse2, avx2, avx512; default: the
  * build's own); the matrix passes only kernels the CPU runs. */
 #include "blob.h"
 #include "bvh.h"
@@ -32,12 +32,12 @@ static uint8_t *read_file(const char *path, size_t *size)
 
 int main(int argc, char **argv)
 {
-    static const char *const kernels[] = {"portable", "sse2", "avx2"};
+    static const char *const kernels[] = {"portable", "sse2", "avx2", "avx512"};
     int kernel = -1;
-    for (int k = 0; argc == 4 && k < 3; k++)
+    for (int k = 0; argc == 4 && k < 4; k++)
         if (!strcmp(argv[3], kernels[k])) kernel = k;
     if (argc != 3 && !(argc == 4 && kernel >= 0)) {
-        fprintf(stderr, "usage: %s SCENE.rtscene ARENA_MIB [portable|sse2|avx2]\n", argv[0]);
+        fprintf(stderr, "usage: %s SCENE.rtscene ARENA_MIB [portable|sse2|avx2|avx512]\n", argv[0]);
         return 2;
     }
     size_t blob_size = 0, arena_size = (size_t)strtoul(argv[2], NULL, 10) << 20;

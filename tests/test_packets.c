@@ -1,4 +1,4 @@
-/* The stream queries (core/bvh_stream.c: packets of rays under the SSE2 and AVX2
+/* The stream queries (core/bvh_stream.c: packets of rays under the SSE2, AVX2 and AVX-512
  * kernels) give every ray exactly what the one-ray queries give it, and a render traced
  * in packets (core/render_packet.c) is the same bytes as one traced pixel by pixel,
  * under every kernel this CPU runs. */
@@ -148,7 +148,7 @@ Test(packets, stream_queries_equal_one_ray_queries)
     }
     cr_assert(hits > RAYS / 4 && hits < RAYS - RAYS / 8, "%u of %u rays hit", hits, RAYS);
     int kernels = 0;
-    for (rt_kernel k = RT_KERNEL_PORTABLE; k <= RT_KERNEL_AVX2; k++) {
+    for (rt_kernel k = RT_KERNEL_PORTABLE; k <= RT_KERNEL_AVX512; k++) {
         if (!rtp_kernel_runs(k)) continue;
         kernels++;
         cr_assert(rt_bvh_set_kernel(&s.bvh, k));
@@ -209,7 +209,7 @@ Test(packets, renders_equal_the_pixel_path)
         for (int32_t aa = 0; aa <= 1; aa++) {
             uint8_t want[32], got[32];
             render_hash(scenes[i], RT_KERNEL_PORTABLE, 61, aa, want);
-            for (rt_kernel k = RT_KERNEL_SSE2; k <= RT_KERNEL_AVX2; k++) {
+            for (rt_kernel k = RT_KERNEL_SSE2; k <= RT_KERNEL_AVX512; k++) {
                 if (!rtp_kernel_runs(k)) continue;
                 render_hash(scenes[i], k, 61, aa, got);
                 cr_assert(!memcmp(want, got, 32), "%s, aa %d, under %s: another image", scenes[i], aa,

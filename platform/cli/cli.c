@@ -74,7 +74,7 @@ int rtp_cli_parse_scene_option(int argc, char **argv, int *i, rtp_scene_options 
     } else if (!strcmp(arg, "--max-memory")) {
         if (!rtp_cli_parse_bytes(val, &opt->max_memory)) return *problem = "expected a size such as 512M after", -1;
     } else if (!strcmp(arg, "--kernel")) {
-        if (!rtp_kernel_parse(val, &opt->kernel)) return *problem = "expected portable, sse2 or avx2 after", -1;
+        if (!rtp_kernel_parse(val, &opt->kernel)) return *problem = "expected portable, sse2, avx2 or avx512 after", -1;
         if (!rtp_kernel_runs(opt->kernel)) return *problem = "this CPU or build cannot run the kernel given by", -1;
         opt->kernel_forced = true;
     } else {

@@ -49,7 +49,7 @@ int rtp_cli_flush_stdout(const char *cmd);
     "  --assets DIR        the folder that contains assets/ (default: found from the scene's path;\n" \
     "                      for the scene '-', read from standard input: the working folder)\n"        \
     "  --max-memory SIZE   cap on all the memory rtk allocates, e.g. 512M or 4G (default 4G)\n"       \
-    "  --kernel NAME       BVH code: portable, sse2 or avx2 (default: the fastest this CPU\n"         \
-    "                      runs); the image does not depend on it\n"
+    "  --kernel NAME       BVH code: portable, sse2, avx2 or avx512 (default: the fastest this\n"     \
+    "                      CPU runs); the image does not depend on it\n"
 
 #endif

@@ -6,7 +6,7 @@
 #include "scene.h"
 #include <stdbool.h>
 
-/* The kernel's name: "portable", "sse2" or "avx2". */
+/* The kernel's name: "portable", "sse2", "avx2" or "avx512". */
 const char *rtp_kernel_name(rt_kernel k);
 /* The kernel named s; false for an unknown name. */
 bool rtp_kernel_parse(const char *s, rt_kernel *out);
