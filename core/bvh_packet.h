@@ -48,8 +48,9 @@ typedef long long pk_ll __attribute__((vector_size(64))); /* the type AVX-512's 
 #define PK_ALLD(x) ((pk_d){x, x})
 #endif
 /* The triangle tests' comparisons of double vectors, as pk_m lane masks: a vector of
- * all-ones and zero lanes, or with AVX-512 a mask register's bits (a compare straight into
- * a mask, as C's < and == would be, signalling and quiet); PK_BITS gives their bits. */
+ * all-ones and zero lanes, or with AVX-512 the bits of a compare straight into a mask
+ * register, by the predicates of C's <, <= and > (signalling) and == (quiet). PK_BITS
+ * gives a mask's bits. */
 #if PACKET_VEC_D == 64
 typedef unsigned pk_m;
 #define PK_CMPD(a, b, predicate) ((unsigned)__builtin_ia32_cmppd512_mask(a, b, predicate, (unsigned char)0xff, 4))

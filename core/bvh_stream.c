@@ -26,11 +26,13 @@ static void trace_group(const rt_scene *scene, group *g, bool any, rt_scene_hit 
     rt_scene_hit hits[RT_PACKET];
     bool got[RT_PACKET] = {false};
     unsigned taken = 0;
-    if (g->n > 1) switch (scene->bvh.kernel) {
+    if (g->n > 1) {
+        switch (scene->bvh.kernel) {
         case RT_KERNEL_AVX512: taken = rt_bvh_packet_avx512(scene, g->rs, g->n, any, hits, got); break;
         case RT_KERNEL_AVX2: taken = rt_bvh_packet_avx2(scene, g->rs, g->n, any, hits, got); break;
         default: taken = rt_bvh_packet_sse2(scene, g->rs, g->n, any, hits, got);
         }
+    }
     for (uint32_t i = 0; i < g->n; i++) {
         uint32_t r = g->index[i];
         if (!(taken >> i & 1u)) {
