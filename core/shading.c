@@ -93,12 +93,14 @@ static rt_vec3 shadow_attenuation(const rt_tracer *tr, rt_vec3 point, rt_vec3 to
         rt_raylog_color(tr->log, id, atten);
         if (rec) rec->transmittance = kt;
         if (rt_v3_is_zero(atten)) return atten;
-        /* Light that a surface lets only part of through, yet unchanged: the attenuation
-         * is at the arithmetic's floor (a few lsb in Q32.32, the least subnormal in
-         * double) and can fall no further, however many crossings follow (up to 65,536
-         * queries per shadow ray): it counts as blocked. */
-        if (rt_v3_equal(atten, before) && (atten.x == RT_ZERO || kt.x < RT_ONE) &&
-            (atten.y == RT_ZERO || kt.y < RT_ONE) && (atten.z == RT_ZERO || kt.z < RT_ONE))
+        /* Light that a surface scales (by a transmittance other than 1), yet unchanged:
+         * the attenuation is at the arithmetic's floor (a few lsb in Q32.32, the least
+         * subnormal in double) and can fall no further, or, under a transmittance above
+         * 1, at its ceiling (Q32.32's largest value, infinity in double), however many
+         * crossings follow (up to 65,536 queries per shadow ray): it counts as blocked,
+         * as the loop's bound would have it. */
+        if (rt_v3_equal(atten, before) && (atten.x == RT_ZERO || kt.x != RT_ONE) &&
+            (atten.y == RT_ZERO || kt.y != RT_ONE) && (atten.z == RT_ZERO || kt.z != RT_ONE))
             break;
         /* A hit point that rounds to the origin (coordinates like 1e120, where t = 0.5 is
          * below their rounding) would be found again at every crossing, 65,536 times:
