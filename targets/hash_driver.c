@@ -34,7 +34,7 @@ int main(int argc, char **argv)
 {
     static const char *const kernels[] = {"portable", "sse2", "avx2", "avx512"};
     int kernel = -1;
-    for (int k = 0; argc == 4 && k < 4; k++)
+    for (int k = 0; argc == 4 && k < (int)(sizeof kernels / sizeof kernels[0]); k++)
         if (!strcmp(argv[3], kernels[k])) kernel = k;
     if (argc != 3 && !(argc == 4 && kernel >= 0)) {
         fprintf(stderr, "usage: %s SCENE.rtscene ARENA_MIB [portable|sse2|avx2|avx512]\n", argv[0]);
