@@ -309,7 +309,7 @@ int main(int argc, char **argv)
     bench_workload w;
     bool ok;
     if (!strcmp(argv[1], "rays")) {
-        ok = bench_make_workload(scene, width, height, &w) && bench_workload_write(argv[3], &w);
+        ok = bench_make_workload(argv[2], scene, width, height, &w) && bench_workload_write(argv[3], &w);
         if (ok)
             printf("triangles %u\nprimary_rays %u\nshadow_rays %u\n", w.triangle_count, w.primary_count,
                    w.shadow_count);

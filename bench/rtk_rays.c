@@ -61,16 +61,17 @@ static bool copy_triangles(const rt_scene *scene, bench_workload *w)
     return true;
 }
 
-bool bench_make_workload(const rt_scene *scene, uint32_t width, uint32_t height, bench_workload *w)
+bool bench_make_workload(const char *path, const rt_scene *scene, uint32_t width, uint32_t height, bench_workload *w)
 {
     memset(w, 0, sizeof *w);
     if (scene->prim_count != scene->triangle_count || scene->triangle_count == 0) {
-        fprintf(stderr, "rtk-bench: the ray benchmark scene must hold triangles only (no spheres or cylinders)\n");
+        fprintf(stderr, "rtk-bench: %s: the ray benchmark scene must hold triangles only (no spheres or cylinders)\n",
+                path);
         return false;
     }
     const rt_light *light = pick_light(scene);
     if (!light) {
-        fprintf(stderr, "rtk-bench: the ray benchmark scene needs a point or directional light\n");
+        fprintf(stderr, "rtk-bench: %s: the ray benchmark scene needs a point or directional light\n", path);
         return false;
     }
     size_t n = (size_t)width * height;

@@ -8,9 +8,12 @@
 # triangles or of the shadow rays' verdicts.
 #
 # Environment: BENCH_FIXED=1 when build-fixed/ is usable; BENCH_ASSETS (default
-# ../shared/cse457, the folder holding assets/); BENCH_SIZE (camera rays, default
-# 1024x1024); BENCH_ROUNDS (the kernels take turns, default 3 rounds) and BENCH_REPEATS
-# (each kernel's repeats in a round, default 3): each row is the best of them all.
+# ../shared/cse457, the folder holding assets/); BENCH_MESH (the scene whose triangles
+# and camera make the rays, default scenes/bench/dense_mesh.yaml; triangles only);
+# BENCH_SIZE (camera rays, default 1024x1024); BENCH_ROUNDS (the kernels take turns,
+# default 3 rounds) and BENCH_REPEATS (each kernel's repeats in a round, default 3):
+# each row is the best of them all; BENCH_RENDER_REPEATS (each render's runs, default 3;
+# its row is the best).
 set -eu
 
 ASSETS=${BENCH_ASSETS:-../shared/cse457}
@@ -18,8 +21,9 @@ FIXED=${BENCH_FIXED:-0}
 SIZE=${BENCH_SIZE:-1024x1024}
 ROUNDS=${BENCH_ROUNDS:-3}
 REPEATS=${BENCH_REPEATS:-3}
+RENDER_REPEATS=${BENCH_RENDER_REPEATS:-3}
 OUT=build/bench
-MESH=scenes/bench/dense_mesh.yaml
+MESH=${BENCH_MESH:-scenes/bench/dense_mesh.yaml}
 ROWS=$OUT/rows.tsv
 mkdir -p "$OUT"
 # A kernel not run this time must not report old figures.
@@ -32,6 +36,16 @@ val() { [ -f "$1" ] && awk -v k="$2" '$1 == k { print $2; exit }' "$1" || true; 
 
 if [ ! -d "$ASSETS/assets" ]; then
     note "bench: no assets/ folder in $ASSETS (set BENCH_ASSETS to the folder that contains assets/)"
+    exit 3
+fi
+for knob in ROUNDS REPEATS RENDER_REPEATS; do
+    if ! [[ ${!knob} =~ ^[1-9][0-9]*$ ]]; then
+        note "bench: BENCH_$knob must be a whole number of 1 or more, not '${!knob}'"
+        exit 3
+    fi
+done
+if [ ! -f "$MESH" ]; then
+    note "bench: no scene $MESH (BENCH_MESH names a scene file whose triangles and camera make the rays)"
     exit 3
 fi
 
@@ -53,6 +67,7 @@ for scene in "$ASSETS"/assets/trace/*/*.yaml; do
     corpus+=("$scene")
 done
 bench_scenes=(scenes/bench/dense_mesh.yaml scenes/bench/spheres.yaml scenes/bench/deep.yaml)
+case " ${bench_scenes[*]} " in *" $MESH "*) ;; *) bench_scenes+=("$MESH") ;; esac
 kernels=(double)
 [ "$FIXED" = 1 ] && kernels+=(fixed)
 steps=$((2 + ROUNDS * (1 + ${#kernels[@]}) + ${#kernels[@]} * (${#corpus[@]} + ${#bench_scenes[@]})))
@@ -160,23 +175,26 @@ row "BVH + mesh memory" B/tri "$(val $D bytes_per_tri)" "$(val $F bytes_per_tri)
 row "BVH + mesh memory vs Embree HIGH" B/tri "$(val $D bytes_per_tri)" "$(val $F bytes_per_tri)" \
     "$(val $E bytes_per_tri_high)"
 
-# Sets t to the wall time of `rtk render --quiet` (load, build, render, write a PPM) for
-# one kernel, or "failed", or "" when that kernel is not built. Extra arguments go to
-# rtk render.
+# Sets t to the best of RENDER_REPEATS wall times of `rtk render --quiet` (load, build,
+# render, write a PPM) for one kernel, or "failed", or "" when that kernel is not built.
+# Extra arguments go to rtk render.
 render_time() {
-    local k=$1 scene=$2 dir=build start
+    local k=$1 scene=$2 dir=build start run one
     shift 2
     t=""
     [ "$k" = fixed ] && dir=build-fixed
     if [ "$k" = fixed ] && [ "$FIXED" != 1 ]; then return; fi
     progress "render ${scene#"$ASSETS"/assets/trace/} ($k${1:+ $*})"
-    start=$(date +%s.%N)
-    if "$dir/rtk" render --quiet "$scene" --assets "$ASSETS" -o "$OUT/render.ppm" "$@" 2>"$OUT/render.err"; then
-        t=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.3f", b - a }')
-    else
-        note "  failed: $(head -n1 "$OUT/render.err")"
-        t=failed
-    fi
+    for run in $(seq "$RENDER_REPEATS"); do
+        start=$(date +%s.%N)
+        if ! "$dir/rtk" render --quiet "$scene" --assets "$ASSETS" -o "$OUT/render.ppm" "$@" 2>"$OUT/render.err"; then
+            note "  failed: $(head -n1 "$OUT/render.err")"
+            t=failed
+            return
+        fi
+        one=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.3f", b - a }')
+        if [ "$run" = 1 ] || awk -v a="$one" -v b="$t" 'BEGIN { exit !(a < b) }'; then t=$one; fi
+    done
 }
 for scene in "${corpus[@]}" "${bench_scenes[@]}"; do
     render_time double "$scene"
