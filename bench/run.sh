@@ -210,7 +210,7 @@ row "render $deep, 1 thread" s "$t" "" ""
 row "render $deep speed-up $cpus/1 threads" x "$(speedup "$t" "$(val_row "render $deep" 3)")" "" ""
 rm -f "$OUT/render.ppm" "$OUT/render.err"
 
-machine=$(lscpu | sed -n 's/^Model name: *//p' | head -n1)
+machine=$(bench/machine.sh)
 compiler=$(${CC:-cc} --version | head -n1)
 embree=$(val $E kernel)
 header="rtk vs Embree ${embree#embree-} on $machine, $cpus CPUs, Linux $(uname -r), $compiler;"

@@ -89,7 +89,7 @@ for level in $LEVELS; do
     echo "$row,$(val "$A" primary_agree),$(val "$A" shadow_agree),$render,$(val "$A" primary_agree_but_neighbours)" >>"$csv"
 done
 
-machine=$(lscpu | sed -n 's/^Model name: *//p' | head -n1)
+machine=$(bench/machine.sh)
 printf 'rtk (kernel %s) vs Embree %s on %s, %s CPUs, %s; %s camera rays per size\n' "$(val "$D" kernel_name)" \
     "$(val "$E" kernel | sed 's/embree-//')" "$machine" "$(nproc)" "$(${CC:-cc} --version | head -n1)" "$SIZE"
 printf 'load average: %s at start, %s at end\n\n' "$load_start" "$(cut -d' ' -f1 /proc/loadavg)"
