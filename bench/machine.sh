@@ -3,7 +3,8 @@
 # family and model numbers (virtual machines often hide which generation the name is)
 # and whether it has AVX2 and AVX-512 (which decide rtk's and Embree's kernels).
 set -eu
-field() { lscpu | sed -n "s/^$1: *//p" | head -n1; }
+info=$(lscpu)
+field() { sed -n "s/^$1: *//p" <<<"$info" | head -n1; }
 flags=$(grep -m1 '^flags' /proc/cpuinfo 2>/dev/null || true)
 has() { case " $flags " in *" $1 "*) echo "$2" ;; *) echo "no $2" ;; esac; }
 printf '%s (family %s, model %s; %s, %s)\n' "$(field 'Model name')" "$(field 'CPU family')" "$(field 'Model')" \
