@@ -1,9 +1,9 @@
 /* A BVH leaf visited by one ray: the exact test of each of its references, keeping the
- * nearest hit with the tie rule of bvh.h. In the double build the triangles' edge
- * functions are first computed two at a time (vector_size(16) doubles: SSE2, NEON),
- * with exactly the scalar test's operations (four at a time in the avx2 kernel's
- * any-hit queries), so only triangles that test can hit take the whole test. Included
- * by scene_query.c and each kernel's walks (bvh_kernel_*.c), which may compile
+ * nearest hit with the tie rule of bvh.h. In the double build the triangles are tested
+ * two at a time (vector_size(16) doubles: SSE2, NEON; four at a time in the avx2
+ * kernel's any-hit queries) with exactly the scalar test's operations, a triangle per
+ * lane (bvh_leaf_lanes.h), and the lanes give their crossings' t and barycentrics.
+ * Included by scene_query.c and each kernel's walks (bvh_kernel_*.c), which may compile
  * visit_leaf for their instruction set (LEAF_TARGET). */
 #ifndef RT_BVH_LEAF_H
 #define RT_BVH_LEAF_H
@@ -130,48 +130,42 @@ typedef int64_t pair_i __attribute__((vector_size(16)));
 #define PAIR_SHUFFLE(a, b, i, j) __builtin_shuffle(a, b, (pair_i){i, j})
 #endif
 
-/* Vertex v of triangles t0 and t1 relative to the origin o, a coordinate per vector:
- * out[k] holds coordinate k of both. */
-__attribute__((always_inline)) static inline void pair_vertex(const rt_vec3 *p, const rt_triangle *t0,
-                                                              const rt_triangle *t1, int v, rt_vec3 o, pair_d out[3])
+/* Vertex v of triangles refs[0], refs[1] relative to the origin o, a coordinate per
+ * vector: out[k] holds coordinate k of both. */
+__attribute__((always_inline)) static inline LEAF_TARGET void lanes_vertex2(const rt_scene *scene, const uint32_t *refs,
+                                                                            int v, rt_vec3 o, pair_d out[3])
 {
-    const rt_vec3 *a = &p[t0->v[v]], *b = &p[t1->v[v]];
+    const rt_vec3 *p = scene->positions;
+    const rt_triangle *t = scene->triangles;
+    const rt_vec3 *a = &p[t[refs[0]].v[v]], *b = &p[t[refs[1]].v[v]];
     pair_d xy_a = *(const pair_d_load *)&a->x, xy_b = *(const pair_d_load *)&b->x;
     out[0] = PAIR_SHUFFLE(xy_a, xy_b, 0, 2) - o.x;
     out[1] = PAIR_SHUFFLE(xy_a, xy_b, 1, 3) - o.y;
     out[2] = (pair_d){a->z, b->z} - o.z;
 }
 
-/* Which of the triangles refs[0], refs[1] the watertight test may hit (bits 0, 1): their
- * edge functions u, v, w by the operations of rt_intersect_triangle_axes, one triangle
- * per lane, so a triangle rejected here for signs on both sides is one that test rejects. */
-__attribute__((always_inline)) static inline unsigned edge_pair(const rt_scene *scene, const uint32_t *refs,
-                                                                const rt_ray_setup *rs, int kx, int ky, int kz)
+__attribute__((always_inline)) static inline LEAF_TARGET unsigned lanes_bits2(pair_i m)
 {
-    const rt_triangle *t0 = &scene->triangles[refs[0]], *t1 = &scene->triangles[refs[1]];
-    pair_d pa[3], pb[3], pc[3];
-    pair_vertex(scene->positions, t0, t1, 0, rs->ray.origin, pa);
-    pair_vertex(scene->positions, t0, t1, 1, rs->ray.origin, pb);
-    pair_vertex(scene->positions, t0, t1, 2, rs->ray.origin, pc);
-    pair_d ax = pa[kx] - rs->sx * pa[kz], ay = pa[ky] - rs->sy * pa[kz];
-    pair_d bx = pb[kx] - rs->sx * pb[kz], by = pb[ky] - rs->sy * pb[kz];
-    pair_d cx = pc[kx] - rs->sx * pc[kz], cy = pc[ky] - rs->sy * pc[kz];
-    pair_d u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax, zero = {0.0, 0.0};
-    pair_i outside = ((u < zero) | (v < zero) | (w < zero)) & ((u > zero) | (v > zero) | (w > zero));
-    return (unsigned)(outside[0] == 0) | (unsigned)(outside[1] == 0) << 1;
+    return (unsigned)(m[0] != 0) | (unsigned)(m[1] != 0) << 1;
 }
 
+#define LANES 2
+#include "bvh_leaf_lanes.h"
+#undef LANES
+
 #ifdef LEAF_QUADS
-/* The same for four triangles refs[0 .. 4) in 256-bit vectors (the avx2 kernel's leaves,
- * LEAF_QUADS): bits 0 to 3. */
+/* The same for four triangles in 256-bit vectors (the avx2 kernel's any-hit leaves). */
 typedef double quad_d __attribute__((vector_size(32)));
 typedef int64_t quad_i __attribute__((vector_size(32)));
 
-/* Vertex v of triangles t[0 .. 4) relative to the origin o, a coordinate per vector. */
-__attribute__((always_inline)) static inline LEAF_TARGET void quad_vertex(const rt_vec3 *p, const rt_triangle *const *t,
-                                                                          int v, rt_vec3 o, quad_d out[3])
+/* Vertex v of triangles refs[0 .. 4) relative to the origin o, a coordinate per vector. */
+__attribute__((always_inline)) static inline LEAF_TARGET void lanes_vertex4(const rt_scene *scene, const uint32_t *refs,
+                                                                            int v, rt_vec3 o, quad_d out[3])
 {
-    const rt_vec3 *a = &p[t[0]->v[v]], *b = &p[t[1]->v[v]], *c = &p[t[2]->v[v]], *d = &p[t[3]->v[v]];
+    const rt_vec3 *p = scene->positions;
+    const rt_triangle *t = scene->triangles;
+    const rt_vec3 *a = &p[t[refs[0]].v[v]], *b = &p[t[refs[1]].v[v]], *c = &p[t[refs[2]].v[v]];
+    const rt_vec3 *d = &p[t[refs[3]].v[v]];
     pair_d xy_a = *(const pair_d_load *)&a->x, xy_b = *(const pair_d_load *)&b->x;
     pair_d xy_c = *(const pair_d_load *)&c->x, xy_d = *(const pair_d_load *)&d->x;
     quad_d ac = __builtin_shufflevector(xy_a, xy_c, 0, 1, 2, 3), bd = __builtin_shufflevector(xy_b, xy_d, 0, 1, 2, 3);
@@ -180,24 +174,25 @@ __attribute__((always_inline)) static inline LEAF_TARGET void quad_vertex(const 
     out[2] = (quad_d){a->z, b->z, c->z, d->z} - o.z;
 }
 
-__attribute__((always_inline)) static inline LEAF_TARGET unsigned edge_quad(const rt_scene *scene, const uint32_t *refs,
-                                                                            const rt_ray_setup *rs, int kx, int ky,
-                                                                            int kz)
+__attribute__((always_inline)) static inline LEAF_TARGET unsigned lanes_bits4(quad_i m)
 {
-    const rt_triangle *t[4] = {&scene->triangles[refs[0]], &scene->triangles[refs[1]], &scene->triangles[refs[2]],
-                               &scene->triangles[refs[3]]};
-    quad_d pa[3], pb[3], pc[3];
-    quad_vertex(scene->positions, t, 0, rs->ray.origin, pa);
-    quad_vertex(scene->positions, t, 1, rs->ray.origin, pb);
-    quad_vertex(scene->positions, t, 2, rs->ray.origin, pc);
-    quad_d ax = pa[kx] - rs->sx * pa[kz], ay = pa[ky] - rs->sy * pa[kz];
-    quad_d bx = pb[kx] - rs->sx * pb[kz], by = pb[ky] - rs->sy * pb[kz];
-    quad_d cx = pc[kx] - rs->sx * pc[kz], cy = pc[ky] - rs->sy * pc[kz];
-    quad_d u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax, zero = {0.0, 0.0, 0.0, 0.0};
-    quad_i outside = ((u < zero) | (v < zero) | (w < zero)) & ((u > zero) | (v > zero) | (w > zero));
-    return (unsigned)__builtin_ia32_movmskpd256((quad_d)~outside);
+    return (unsigned)__builtin_ia32_movmskpd256((quad_d)m);
 }
+
+#define LANES 4
+#include "bvh_leaf_lanes.h"
+#undef LANES
 #endif
+
+/* Keeps a triangle's crossing in *best by the tie rule, as consider does. */
+__attribute__((always_inline)) static inline void keep_crossing(uint32_t prim, rt_triangle_crossing x,
+                                                                rt_scene_hit *best, bool *found)
+{
+    if (loses_to(best, *found, x.t, prim)) return;
+    rt_triangle_hit(&x, &best->hit);
+    best->prim = prim;
+    *found = true;
+}
 #else
 #define EDGE_PAIRS 0
 #endif
@@ -217,22 +212,35 @@ __attribute__((always_inline)) static inline LEAF_TARGET bool leaf_loop(const rt
         /* Lanes past the leaf's end repeat its last reference. */
         uint32_t q[4] = {refs[i], refs[i + 1 < last ? i + 1 : last], refs[i + 2 < last ? i + 2 : last],
                          refs[i + 3 < last ? i + 3 : last]};
-        unsigned maybe = (1u << n) - 1, tc = scene->triangle_count; /* quadrics take their own test */
-        if ((q[0] < tc) & (q[1] < tc) & (q[2] < tc) & (q[3] < tc)) maybe &= edge_quad(scene, q, rs, kx, ky, kz);
-        for (; maybe; maybe &= maybe - 1) {
-            consider(scene, q[__builtin_ctz(maybe)], rs, best, found, kx, ky, kz, bounded);
+        unsigned in_leaf = (1u << n) - 1, tc = scene->triangle_count;
+        if ((q[0] < tc) & (q[1] < tc) & (q[2] < tc) & (q[3] < tc)) {
+            lanes_crossings4 x;
+            unsigned crossed = lanes_cross4(scene, q, rs, kx, ky, kz, &x) & in_leaf;
+            if (!crossed) continue;
+            keep_crossing(q[__builtin_ctz(crossed)], lane_crossing4(&x, __builtin_ctz(crossed)), best, found);
+            return true;
+        }
+        for (; in_leaf; in_leaf &= in_leaf - 1) { /* spheres and cylinders take their own test */
+            consider(scene, q[__builtin_ctz(in_leaf)], rs, best, found, kx, ky, kz, bounded);
             if (*found) return true;
         }
     }
 #endif
 #if EDGE_PAIRS
     for (; i + 2 <= end; i += 2) {
-        unsigned maybe = 3; /* spheres and cylinders take their own test */
-        if (refs[i] < scene->triangle_count && refs[i + 1] < scene->triangle_count)
-            maybe = edge_pair(scene, refs + i, rs, kx, ky, kz);
-        if (maybe & 1) consider(scene, refs[i], rs, best, found, kx, ky, kz, bounded);
+        if (refs[i] < scene->triangle_count && refs[i + 1] < scene->triangle_count) {
+            lanes_crossings2 x;
+            for (unsigned crossed = lanes_cross2(scene, refs + i, rs, kx, ky, kz, &x); crossed;
+                 crossed &= crossed - 1) {
+                keep_crossing(refs[i + __builtin_ctz(crossed)], lane_crossing2(&x, __builtin_ctz(crossed)), best,
+                              found);
+                if (any) return true;
+            }
+            continue;
+        }
+        consider(scene, refs[i], rs, best, found, kx, ky, kz, bounded); /* spheres and cylinders take their own test */
         if (any && *found) return true;
-        if (maybe & 2) consider(scene, refs[i + 1], rs, best, found, kx, ky, kz, bounded);
+        consider(scene, refs[i + 1], rs, best, found, kx, ky, kz, bounded);
         if (any && *found) return true;
     }
 #endif
