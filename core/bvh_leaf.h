@@ -97,23 +97,31 @@ static inline bool loses_to(const rt_scene_hit *best, bool found, rt_real t, uin
     return found && (t > best->hit.t || (t == best->hit.t && prim > best->prim));
 }
 
-/* Keeps prim's hit in *best if it is nearer, or as near and a lower reference; returns
- * whether it did. A triangle's barycentrics are computed only for a hit it keeps.
- * `bounded`: as for triangle_cross. */
+/* Keeps triangle prim's crossing x in *best if it is nearer, or as near and a lower
+ * reference; returns whether it did. Its barycentrics are computed only for a hit it keeps. */
+__attribute__((always_inline)) static inline bool keep_crossing(uint32_t prim, rt_triangle_crossing x,
+                                                                rt_scene_hit *best, bool *found)
+{
+    if (loses_to(best, *found, x.t, prim)) return false;
+    rt_triangle_hit(&x, &best->hit);
+    best->prim = prim;
+    *found = true;
+    return true;
+}
+
+/* Keeps prim's hit in *best by the same rule; returns whether it did. `bounded`: as for
+ * triangle_cross. */
 __attribute__((always_inline)) static inline bool consider(const rt_scene *scene, uint32_t prim, const rt_ray_setup *rs,
                                                            rt_scene_hit *best, bool *found, int kx, int ky, int kz,
                                                            bool bounded)
 {
     if (prim < scene->triangle_count) {
         rt_triangle_crossing x;
-        if (!triangle_cross(scene, prim, rs, &x, kx, ky, kz, bounded) || loses_to(best, *found, x.t, prim))
-            return false;
-        rt_triangle_hit(&x, &best->hit);
-    } else {
-        rt_prim_hit h;
-        if (!quadric_intersect(scene, prim, rs, &h) || loses_to(best, *found, h.t, prim)) return false;
-        best->hit = h;
+        return triangle_cross(scene, prim, rs, &x, kx, ky, kz, bounded) && keep_crossing(prim, x, best, found);
     }
+    rt_prim_hit h;
+    if (!quadric_intersect(scene, prim, rs, &h) || loses_to(best, *found, h.t, prim)) return false;
+    best->hit = h;
     best->prim = prim;
     *found = true;
     return true;
@@ -183,16 +191,6 @@ __attribute__((always_inline)) static inline LEAF_TARGET unsigned lanes_bits4(qu
 #include "bvh_leaf_lanes.h"
 #undef LANES
 #endif
-
-/* Keeps a triangle's crossing in *best by the tie rule, as consider does. */
-__attribute__((always_inline)) static inline void keep_crossing(uint32_t prim, rt_triangle_crossing x,
-                                                                rt_scene_hit *best, bool *found)
-{
-    if (loses_to(best, *found, x.t, prim)) return;
-    rt_triangle_hit(&x, &best->hit);
-    best->prim = prim;
-    *found = true;
-}
 #else
 #define EDGE_PAIRS 0
 #endif
