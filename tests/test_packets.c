@@ -7,6 +7,7 @@
 #include "load/scene_open.h"
 #include "reference.h"
 #include "render.h"
+#include "same_hit.h"
 #include "scene_query.h"
 #include "sha256.h"
 #include "thread/kernel.h"
@@ -73,13 +74,6 @@ static void soup(rt_scene *s, void **memory, uint32_t triangles, uint32_t sphere
     free(pos);
     free(idx);
     free(objs);
-}
-
-/* t, b1, b2 bit for bit, and the part. */
-static bool same_hit(const rt_prim_hit *a, const rt_prim_hit *b)
-{
-    return !memcmp(&a->t, &b->t, sizeof a->t) && !memcmp(&a->b1, &b->b1, sizeof a->b1) &&
-           !memcmp(&a->b2, &b->b2, sizeof a->b2) && a->part == b->part;
 }
 
 #define RAYS 4096
