@@ -255,8 +255,7 @@ __attribute__((always_inline)) static inline LEAF_TARGET bool leaf_permuted(cons
                                                                             bool any, rt_scene_hit *best, bool *found,
                                                                             bool bounded)
 {
-    bool swapped = rs->kx != (rs->kz + 1) % 3; /* see rt_intersect_prepare */
-    switch (rs->kz * 2 + swapped) {
+    switch (rs->order) {
     case 0: return leaf_loop(scene, first, count, rs, any, best, found, 1, 2, 0, bounded);
     case 1: return leaf_loop(scene, first, count, rs, any, best, found, 2, 1, 0, bounded);
     case 2: return leaf_loop(scene, first, count, rs, any, best, found, 2, 0, 1, bounded);

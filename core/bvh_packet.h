@@ -80,7 +80,7 @@ typedef struct {
     pk_f t_min_f[PACKET_NF], best[PACKET_NF]; /* best: the t each ray's boxes are tested against */
     pk_d origin[3][PACKET_ND], sx[PACKET_ND], sy[PACKET_ND], sz[PACKET_ND], t_min[PACKET_ND], t_max[PACKET_ND];
     size_t near[3], far[3]; /* byte offsets of each axis' near and far row of rt_bvh_node.box */
-    int kx, ky, kz;
+    int order;              /* the rays' axis order (rt_ray_setup.order) */
 } pk_packet;
 
 /* A child waiting to be visited by the rays in `mask`, each entering its box at or after t. */
@@ -233,7 +233,7 @@ __attribute__((noinline)) static PACKET_TARGET unsigned pk_leaf(const rt_scene *
                                                                 uint32_t count, unsigned mask, bool any,
                                                                 rt_scene_hit *out, bool *found)
 {
-    switch (p->kz * 2 + (p->kx != (p->kz + 1) % 3)) {
+    switch (p->order) {
     case 0: return pk_leaf_loop(scene, p, rs, first, count, mask, any, out, found, 1, 2, 0);
     case 1: return pk_leaf_loop(scene, p, rs, first, count, mask, any, out, found, 2, 1, 0);
     case 2: return pk_leaf_loop(scene, p, rs, first, count, mask, any, out, found, 2, 0, 1);
@@ -322,7 +322,7 @@ static PACKET_TARGET unsigned pk_fill(pk_packet *p, const rt_ray_setup *const *r
     const size_t row = sizeof((const rt_bvh_node *)0)->box[0];
     p->near[0] = d.x < 0 ? 3 * row : 0, p->near[1] = d.y < 0 ? 4 * row : row, p->near[2] = d.z < 0 ? 5 * row : 2 * row;
     p->far[0] = d.x < 0 ? 0 : 3 * row, p->far[1] = d.y < 0 ? row : 4 * row, p->far[2] = d.z < 0 ? 2 * row : 5 * row;
-    p->kx = rs[0]->kx, p->ky = rs[0]->ky, p->kz = rs[0]->kz;
+    p->order = rs[0]->order;
     return usable & (n >= 32 ? ~0u : (1u << n) - 1);
 }
 

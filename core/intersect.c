@@ -8,14 +8,12 @@ __attribute__((always_inline)) static inline rt_ray_setup prepare(rt_ray ray, bo
     rt_vec3 d = ray.direction;
     rt_real ax = rt_magnitude(d.x), ay = rt_magnitude(d.y), az = rt_magnitude(d.z);
     rs.kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
-    rs.kx = (rs.kz + 1) % 3;
-    rs.ky = (rs.kx + 1) % 3;
+    int next = rs.kz == 2 ? 0 : rs.kz + 1, last = 3 - rs.kz - next; /* the two axes after kz, cyclically */
     rt_real dz = rt_v3_get(d, rs.kz);
-    if (dz < RT_ZERO) { /* keep the triangle winding test's orientation */
-        int swap = rs.kx;
-        rs.kx = rs.ky;
-        rs.ky = swap;
-    }
+    bool swapped = dz < RT_ZERO; /* keeps the triangle winding test's orientation */
+    rs.kx = swapped ? last : next;
+    rs.ky = swapped ? next : last;
+    rs.order = 2 * rs.kz + swapped;
     rs.sx = shear ? rt_div(rt_v3_get(d, rs.kx), dz) : RT_ZERO;
     rs.sy = shear ? rt_div(rt_v3_get(d, rs.ky), dz) : RT_ZERO;
     rs.sz = shear ? rt_div(RT_ONE, dz) : RT_ZERO;
