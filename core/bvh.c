@@ -600,8 +600,9 @@ rt_status rt_bvh_build_planned(rt_scene *scene, rt_arena *arena, const rt_worker
     uint32_t n = scene->prim_count;
     rt_bvh *bvh = &scene->bvh;
     bvh->kernel = rt_bvh_kernel_compiled(RT_KERNEL_SSE2) ? RT_KERNEL_SSE2 : RT_KERNEL_PORTABLE;
-    bvh->prim_refs = RT_NEW_ARRAY(arena, uint32_t, n > 0 ? n : 1);
+    bvh->prim_refs = RT_NEW_ARRAY(arena, uint32_t, (size_t)n + RT_BVH_REF_PAD);
     if (!bvh->prim_refs) return RT_ERR_NOMEM;
+    for (uint32_t k = 0; k < RT_BVH_REF_PAD; k++) bvh->prim_refs[n + k] = 0;
     if (n == 0) return rt_bvh_empty(bvh, arena);
     if (plan.split_above < 1) plan.split_above = 1;
     if (plan.chunk < 1) plan.chunk = 1;

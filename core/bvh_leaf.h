@@ -206,10 +206,9 @@ __attribute__((always_inline)) static inline LEAF_TARGET bool leaf_loop(const rt
     /* Any-hit queries take four triangles at a time: faster for shadow rays, where most
      * triangles are rejected, but not for camera rays (docs/performance.md). */
     for (; any && i < end; i += 4) {
-        uint32_t last = end - 1, n = end - i < 4 ? end - i : 4;
-        /* Lanes past the leaf's end repeat its last reference. */
-        uint32_t q[4] = {refs[i], refs[i + 1 < last ? i + 1 : last], refs[i + 2 < last ? i + 2 : last],
-                         refs[i + 3 < last ? i + 3 : last]};
+        /* Lanes past the leaf's end take the next leaf's references (or the zeros past the
+         * last one, RT_BVH_REF_PAD) and are masked out. */
+        uint32_t q[4] = {refs[i], refs[i + 1], refs[i + 2], refs[i + 3]}, n = end - i < 4 ? end - i : 4;
         unsigned in_leaf = (1u << n) - 1, tc = scene->triangle_count;
         if ((q[0] < tc) & (q[1] < tc) & (q[2] < tc) & (q[3] < tc)) {
             lanes_crossings4 x;

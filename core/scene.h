@@ -188,6 +188,9 @@ typedef struct {
 #define RT_BVH_WIDTH 4
 #endif
 #define RT_BVH_NO_CHILD UINT32_MAX
+/* prim_refs ends with this many zeros past its last reference: a leaf's four-lane loads
+ * (bvh_leaf.h) may read three entries past the leaf. */
+#define RT_BVH_REF_PAD 3
 typedef struct {
     rt_bound box[6][RT_BVH_WIDTH];
     uint32_t child[RT_BVH_WIDTH];
