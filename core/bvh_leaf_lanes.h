@@ -40,7 +40,7 @@ __attribute__((always_inline)) static inline LEAF_TARGET unsigned LN(lanes_cross
     LN(lanes_d) cx = pc[kx] - rs->sx * pc[kz], cy = pc[ky] - rs->sy * pc[kz];
     LN(lanes_d) u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax, zero = {0.0};
     LN(lanes_i) outside = ((u < zero) | (v < zero) | (w < zero)) & ((u > zero) | (v > zero) | (w > zero));
-    if (!LN(lanes_bits)(~outside)) return 0;
+    if (LN(lanes_bits)(outside) == (1u << LANES) - 1) return 0;
     LN(lanes_d) det = (u + v) + w;
     LN(lanes_d) extent_x = (LN(lanes_magnitude)(ax) + LN(lanes_magnitude)(bx)) + LN(lanes_magnitude)(cx);
     LN(lanes_d) extent_y = (LN(lanes_magnitude)(ay) + LN(lanes_magnitude)(by)) + LN(lanes_magnitude)(cy);
