@@ -18,7 +18,7 @@ typedef struct {
 typedef struct {
     rt_ray ray;
     int kx, ky, kz;        /* axes permuted so that |direction[kz]| is largest */
-    int order;             /* which of the six (kx, ky, kz) it is: 2 kz, plus 1 if kx, ky are swapped */
+    int order;             /* which of the six (kx, ky, kz) it is: 2 kz, plus 1 when d[kz] < 0 swaps kx, ky */
     rt_real sx, sy, sz;    /* shear constants */
     rt_vec3 inv_direction; /* 1/direction; RT_REAL_MAX-signed for zero components */
 } rt_ray_setup;
