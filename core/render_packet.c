@@ -1,9 +1,10 @@
 /* Whitted renders with a constant sample count, traced in packets: a group of pixels'
  * camera rays go through the stream query together, then the shadow rays of their hits,
  * light by light; then each sample is traced as rt_trace traces it, with those first
- * queries' results handed in (rt_primed). The stream queries give every ray exactly
- * what the one-ray queries give it, and a pixel sums its samples in the same order as
- * rt_render_pixel, so the image is the same bytes. See render_packet.h. */
+ * queries' results and the hits' shading frames handed in (rt_primed). The stream
+ * queries give every ray exactly what the one-ray queries give it, and a pixel sums its
+ * samples in the same order as rt_render_pixel, so the image is the same bytes. See
+ * render_packet.h. */
 #include "render_packet.h"
 #include "bvh.h"
 
@@ -49,10 +50,12 @@ static void trace_batch(const rt_tracer *tr, const uint32_t *col, const uint32_t
     for (uint32_t i = 0; i < n; i++) {
         primed[i].found = found[i];
         primed[i].hit = hit[i];
+        primed[i].point = NULL;
         for (int l = 0; l < RT_PRIMED_LIGHTS; l++) primed[i].shadow[l] = 0;
-        /* The shading point as the trace will make it (no query: the hit is known). */
+        /* The shading point as the trace would make it (no query: the hit is known); the
+         * trace then takes it as it is. */
         with.primed = &primed[i];
-        if (found[i]) rt_shading_hit(&with, &ray[i], RT_RAY_CAMERA, RT_NO_PARENT, 0, &p[i]);
+        if (found[i] && rt_shading_hit(&with, &ray[i], RT_RAY_CAMERA, RT_NO_PARENT, 0, &p[i])) primed[i].point = &p[i];
     }
     uint32_t lights = scene->light_count < RT_PRIMED_LIGHTS ? scene->light_count : RT_PRIMED_LIGHTS;
     bool opaque = scene->camera.trace.shadows == 1;

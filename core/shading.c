@@ -21,6 +21,10 @@ bool rt_shading_hit(const rt_tracer *tr, const rt_ray *ray, rt_ray_kind kind, ui
     rt_scene_hit hit;
     const rt_primed *pr = depth == 0 && kind == RT_RAY_CAMERA ? tr->primed : NULL;
     if (pr ? !pr->found : !rt_shading_nearest(tr, ray, &hit)) return false;
+    if (pr && pr->point) {
+        *p = *pr->point; /* made by this function from the same ray and hit */
+        return true;
+    }
     if (pr) hit = pr->hit;
     rt_surface s = rt_surface_at(scene, ray, &hit, tr->log != NULL);
     const rt_material *mat = &scene->materials[s.material];

@@ -7,7 +7,7 @@
 #include "raylog.h"
 #include "trace.h"
 
-typedef struct {
+typedef struct rt_shading_point {
     rt_vec3 point, n, v; /* hit point, shading normal facing the viewer, unit vector to the viewer */
     bool entering;       /* the viewer is on the shading normal's side */
     rt_vec3 ke, kd, ks, kt;

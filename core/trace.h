@@ -6,14 +6,18 @@
 
 /* The debugger's ray log (raylog.h); the tracer only carries a pointer to it. */
 typedef struct rt_ray_log rt_ray_log;
+/* The shading frame at a hit (shading.h). */
+typedef struct rt_shading_point rt_shading_point;
 
 /* What a camera ray's trace finds at depth 0, known beforehand because the ray and the
- * shadow rays of its hit were traced in packets (render_packet.c): the nearest hit, and
- * for each of the first RT_PRIMED_LIGHTS lights the first query of its shadow ray. */
+ * shadow rays of its hit were traced in packets (render_packet.c): the nearest hit, its
+ * shading frame, and for each of the first RT_PRIMED_LIGHTS lights the first query of its
+ * shadow ray. */
 #define RT_PRIMED_LIGHTS 8
 typedef struct {
     bool found;
     rt_scene_hit hit;
+    const rt_shading_point *point; /* the hit's frame, or NULL while it is being made */
     /* 0: not traced beforehand (query it); 1: nothing in the way; 2: shadow_hit is the
      * nearest hit (coloured shadows) or something blocks (opaque shadows). */
     uint8_t shadow[RT_PRIMED_LIGHTS];
