@@ -31,7 +31,7 @@ PLATFORM_CFLAGS := $(BASE_CFLAGS) -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -I
 	$(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 LDLIBS := $(shell pkg-config --libs $(PKGS) 2>/dev/null || echo -lyaml -lspng) -lpthread -lm
 
-DEB_PACKAGES := build-essential pkg-config libyaml-dev libspng-dev libcriterion-dev libcglm-dev groff-base
+DEB_PACKAGES := build-essential pkg-config libyaml-dev libspng-dev zlib1g-dev libcriterion-dev libcglm-dev groff-base
 
 # The core of one backend: every core file but the other backend's real_double*/real_fixed*.
 core_sources = $(filter-out core/real_double%.c core/real_fixed%.c,$(wildcard core/*.c)) $(wildcard core/real_$(1)*.c)
@@ -90,7 +90,7 @@ $(BUILD)/rtk: $(BUILD)/platform/cli/main.o $(BUILD)/platform/debug/invariant.o $
 	$(CC) $(OPT) -o $@ $^ $(LDLIBS)
 
 $(BUILD)/rtk-tests: $(TEST_OBJ) $(BUILD)/platform/debug/invariant.o $(BUILD)/librtplatform.a $(BUILD)/librtcore-asserts.a
-	$(CC) $(OPT) -o $@ $^ $(LDLIBS) -lcriterion
+	$(CC) $(OPT) -o $@ $^ $(LDLIBS) -lcriterion -lz
 
 # The core's sources for RT_REAL, for the scripts that compile it themselves (targets/).
 core-sources:

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <zlib.h>
 
 static char dir[64];
 
@@ -90,6 +91,55 @@ Test(image, png_chosen_by_extension_in_any_case)
     bytes = get_file(path, &size);
     cr_expect_arr_eq(bytes, "P6\n", 3);
     free(bytes);
+}
+
+/* The filter type of each of the PNG's rows (h of them): its IDAT chunks inflated. */
+static void png_row_filters(const unsigned char *png, size_t size, uint32_t w, uint32_t h, uint8_t *filters)
+{
+    unsigned char *idat = malloc(size), *raw = malloc((size_t)h * (1 + w * 3));
+    size_t idat_size = 0;
+    for (size_t at = 8; at + 12 <= size;) {
+        uint32_t len = (uint32_t)png[at] << 24 | (uint32_t)png[at + 1] << 16 | (uint32_t)png[at + 2] << 8 | png[at + 3];
+        if (memcmp(png + at + 4, "IDAT", 4) == 0) memcpy(idat + idat_size, png + at + 8, len), idat_size += len;
+        at += 12 + (size_t)len;
+    }
+    uLongf raw_size = (uLongf)h * (1 + w * 3);
+    cr_assert_eq(uncompress(raw, &raw_size, idat, idat_size), Z_OK);
+    cr_assert_eq(raw_size, (uLongf)h * (1 + w * 3));
+    for (uint32_t y = 0; y < h; y++) filters[y] = raw[(size_t)y * (1 + w * 3)];
+    free(idat);
+    free(raw);
+}
+
+/* Writes img as PNG, reads it back (same pixels) and returns how many rows are filtered. */
+static uint32_t filtered_rows(rtp_image img, const char *name)
+{
+    char path[128], err[256];
+    cr_assert(rtp_image_write(in_dir(path, sizeof path, name), &img, err, sizeof err), "%s", err);
+    rtp_image back;
+    cr_assert(rtp_image_read(path, &back, err, sizeof err), "%s", err);
+    cr_assert_arr_eq(back.rgb, img.rgb, (size_t)img.width * img.height * 3);
+    rtp_image_free(&back);
+    size_t size;
+    unsigned char *png = get_file(path, &size);
+    uint8_t filters[64];
+    png_row_filters(png, size, img.width, img.height, filters);
+    free(png);
+    uint32_t count = 0;
+    for (uint32_t y = 0; y < img.height; y++) count += filters[y] != 0;
+    return count;
+}
+
+/* Flat images (most pixels repeat their left neighbour, as in a Whitted render) are
+ * written unfiltered; varied ones with libspng's adaptive choice, which a gradient
+ * makes filter every row. */
+Test(image, png_rows_unfiltered_only_when_the_image_is_flat)
+{
+    static uint8_t px[64 * 64 * 3];
+    for (uint32_t i = 0; i < sizeof px; i++) px[i] = (uint8_t)((i / 3) % 64 < 40 ? 200 : i % 7);
+    cr_expect_eq(filtered_rows((rtp_image){.width = 64, .height = 64, .rgb = px}, "flat.png"), 0);
+    for (uint32_t i = 0; i < sizeof px; i++) px[i] = (uint8_t)(i / 3 % 64 * 3 + i / 192);
+    cr_expect_eq(filtered_rows((rtp_image){.width = 64, .height = 64, .rgb = px}, "gradient.png"), 64);
 }
 
 /* The render hash is defined on these exact bytes (core/sha256.h). */
