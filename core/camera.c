@@ -12,58 +12,59 @@ void rt_camera_prepare(rt_camera *cam)
     cam->plane_right = rt_v3_scale(cam->right, rt_mul(rt_mul(focus, cam->tan_half_fov), cam->aspect));
 }
 
-/* P - eye for the perspective camera's image-plane point (x, y). */
-static rt_vec3 focal_offset(const rt_camera *cam, rt_real sx, rt_real sy)
+rt_vec3 rt_camera_x_part(const rt_camera *cam, rt_real x)
 {
-    return rt_v3_add(rt_v3_add(cam->plane_forward, rt_v3_scale(cam->plane_right, sx)), rt_v3_scale(cam->plane_up, sy));
+    rt_real sx = rt_sub(rt_mul(RT_C(2.0), x), RT_ONE);
+    /* Perspective: the image-plane point's offset from the eye is this plus the y part;
+     * orthographic: the origin's offset from the eye over a view Orthographic View Width
+     * wide (format.md §7.4). */
+    if (cam->perspective) return rt_v3_add(cam->plane_forward, rt_v3_scale(cam->plane_right, sx));
+    return rt_v3_scale(cam->right, rt_mul(sx, rt_mul(cam->ortho_width, RT_C(0.5))));
+}
+
+rt_vec3 rt_camera_y_part(const rt_camera *cam, rt_real y)
+{
+    rt_real sy = rt_sub(rt_mul(RT_C(2.0), y), RT_ONE);
+    if (cam->perspective) return rt_v3_scale(cam->plane_up, sy);
+    return rt_v3_scale(cam->up, rt_mul(sy, rt_div(rt_mul(cam->ortho_width, RT_C(0.5)), cam->aspect)));
 }
 
 rt_ray rt_camera_ray(const rt_camera *cam, rt_real x, rt_real y)
 {
-    rt_real sx = rt_sub(rt_mul(RT_C(2.0), x), RT_ONE), sy = rt_sub(rt_mul(RT_C(2.0), y), RT_ONE);
-    rt_ray ray;
-    ray.t_min = RT_HIT_EPSILON;
-    ray.t_max = RT_REAL_MAX;
-    if (!cam->perspective) {
-        /* Parallel rays over a view Orthographic View Width wide (format.md §7.4). */
-        rt_real half_w = rt_mul(cam->ortho_width, RT_C(0.5));
-        rt_real half_h = rt_div(half_w, cam->aspect);
-        ray.origin = rt_v3_add(
-            cam->eye, rt_v3_add(rt_v3_scale(cam->right, rt_mul(sx, half_w)), rt_v3_scale(cam->up, rt_mul(sy, half_h))));
-        ray.direction = cam->forward;
-        return ray;
-    }
-    /* Without a lens the direction does not depend on Focus Distance (up to rounding). */
-    ray.origin = cam->eye;
-    ray.direction = rt_v3_normalize(focal_offset(cam, sx, sy));
-    return ray;
+    return rt_camera_part_ray(cam, rt_camera_x_part(cam, x), rt_camera_y_part(cam, y));
 }
 
 rt_ray rt_camera_lens_ray(const rt_camera *cam, rt_real x, rt_real y, rt_vec2 lens)
 {
     if (!cam->perspective || !(cam->trace.aperture_size > RT_ZERO)) return rt_camera_ray(cam, x, y);
-    rt_real sx = rt_sub(rt_mul(RT_C(2.0), x), RT_ONE), sy = rt_sub(rt_mul(RT_C(2.0), y), RT_ONE);
     rt_vec2 d = rt_sample_disc(lens);
     rt_real radius = rt_mul(cam->trace.aperture_size, RT_C(0.5));
     rt_vec3 shift = rt_v3_add(rt_v3_scale(cam->right, rt_mul(d.u, radius)), rt_v3_scale(cam->up, rt_mul(d.v, radius)));
     /* From a point of the lens towards the same point of the plane in focus. */
-    rt_ray ray = {rt_v3_add(cam->eye, shift), rt_v3_normalize(rt_v3_sub(focal_offset(cam, sx, sy), shift)),
+    rt_ray ray = {rt_v3_add(cam->eye, shift),
+                  rt_v3_normalize(rt_v3_sub(rt_v3_add(rt_camera_x_part(cam, x), rt_camera_y_part(cam, y)), shift)),
                   RT_HIT_EPSILON, RT_REAL_MAX};
     return ray;
 }
 
 uint32_t rt_camera_samples(const rt_camera *cam) { return 1u << (2 * cam->trace.samples_per_pixel_index); }
 
+rt_real rt_camera_grid_x(const rt_camera *cam, uint32_t column, uint32_t a, uint32_t side)
+{
+    /* With one cell the cell centre is 0.5, exactly what the division gives. */
+    rt_real cell = side == 1 ? RT_C(0.5) : rt_div(rt_add(rt_from_int(a), RT_C(0.5)), rt_from_int(side));
+    return rt_div(rt_add(rt_from_int(column), cell), rt_from_int(cam->width));
+}
+
+rt_real rt_camera_grid_y(const rt_camera *cam, uint32_t row, uint32_t b, uint32_t side)
+{
+    rt_real cell = side == 1 ? RT_C(0.5) : rt_div(rt_add(rt_from_int(b), RT_C(0.5)), rt_from_int(side));
+    return rt_div(rt_add(rt_from_int(rt_camera_row_from_bottom(cam, row)), cell), rt_from_int(cam->height));
+}
+
 rt_ray rt_camera_grid_ray(const rt_camera *cam, uint32_t column, uint32_t row, uint32_t a, uint32_t b, uint32_t side)
 {
-    uint32_t j = rt_camera_row_from_bottom(cam, row);
-    rt_real s = rt_from_int(side);
-    /* With one cell the cell centre is 0.5, exactly what the division gives. */
-    rt_real cell_x = side == 1 ? RT_C(0.5) : rt_div(rt_add(rt_from_int(a), RT_C(0.5)), s);
-    rt_real cell_y = side == 1 ? RT_C(0.5) : rt_div(rt_add(rt_from_int(b), RT_C(0.5)), s);
-    rt_real x = rt_div(rt_add(rt_from_int(column), cell_x), rt_from_int(cam->width));
-    rt_real y = rt_div(rt_add(rt_from_int(j), cell_y), rt_from_int(cam->height));
-    return rt_camera_ray(cam, x, y);
+    return rt_camera_ray(cam, rt_camera_grid_x(cam, column, a, side), rt_camera_grid_y(cam, row, b, side));
 }
 
 rt_ray rt_camera_pixel_ray(const rt_camera *cam, uint32_t column, uint32_t row, uint32_t sample)

@@ -1,7 +1,7 @@
 /* Pixels into bytes, region by region; see render.h. */
 #include "render.h"
 #include "invariant.h"
-#include "render_packet.h"
+#include "render_group.h"
 
 uint8_t rt_render_color_byte(rt_real c)
 {
@@ -20,8 +20,8 @@ void rt_render_rect(const rt_tracer *tr, rt_rect area, rt_rect held, uint8_t *rg
 {
     RT_ASSERT(held.x0 <= area.x0 && area.x0 <= area.x1 && area.x1 <= held.x1 && held.x1 <= tr->scene->camera.width);
     RT_ASSERT(held.y0 <= area.y0 && area.y0 <= area.y1 && area.y1 <= held.y1 && held.y1 <= tr->scene->camera.height);
-    if (rt_render_packets_apply(tr)) {
-        rt_render_rect_packets(tr, area, held, rgb);
+    if (rt_render_groups_apply(tr)) {
+        rt_render_rect_groups(tr, area, held, rgb);
         return;
     }
     uint32_t width = held.x1 - held.x0;

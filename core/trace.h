@@ -10,7 +10,7 @@ typedef struct rt_ray_log rt_ray_log;
 typedef struct rt_shading_point rt_shading_point;
 
 /* What a camera ray's trace finds at depth 0, known beforehand because the ray and the
- * shadow rays of its hit were traced in packets (render_packet.c): the nearest hit, its
+ * shadow rays of its hit were traced in packets (render_group.c): the nearest hit, its
  * shading frame, and for each of the first RT_PRIMED_LIGHTS lights the first query of its
  * shadow ray. */
 #define RT_PRIMED_LIGHTS 8

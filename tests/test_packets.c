@@ -1,7 +1,7 @@
 /* The stream queries (core/bvh_stream.c: packets of rays under the SSE2, AVX2 and AVX-512
  * kernels) give every ray exactly what the one-ray queries give it, and a render traced
- * in packets (core/render_packet.c) is the same bytes as one traced pixel by pixel,
- * under every kernel this CPU runs. */
+ * by groups of pixels (core/render_group.c), in packets or one ray at a time, is the same
+ * bytes as one traced pixel by pixel, under every kernel this CPU runs. */
 #include "bvh.h"
 #include "cli/cli.h"
 #include "load/scene_open.h"
@@ -170,8 +170,8 @@ Test(packets, stream_queries_equal_one_ray_queries)
 }
 
 /* SHA-256 of a render of corpus scene `name` at size x size with 4^aa samples per pixel
- * through rt_render_region, under kernel k. */
-static void render_hash(const char *name, rt_kernel k, uint32_t size, int32_t aa, uint8_t digest[32])
+ * under kernel k: through rt_render_region, or by_pixel, rt_render_pixel pixel by pixel. */
+static void render_hash(const char *name, rt_kernel k, uint32_t size, int32_t aa, bool by_pixel, uint8_t digest[32])
 {
     char path[4096], err[1024];
     snprintf(path, sizeof path, "%s/%s", rt_test_trace_dir(), name);
@@ -186,26 +186,33 @@ static void render_hash(const char *name, rt_kernel k, uint32_t size, int32_t aa
     cr_assert_eq(b.scene.bvh.kernel, k);
     uint8_t *rgb = calloc((size_t)size * size, 3);
     rt_tracer tr = {.scene = &b.scene, .use_bvh = true};
-    rt_render_region(&tr, 0, 0, size, size, rgb);
+    if (!by_pixel) rt_render_region(&tr, 0, 0, size, size, rgb);
+    for (uint32_t i = 0; by_pixel && i < size * size; i++) {
+        rt_vec3 c = rt_render_pixel(&tr, i % size, i / size);
+        rgb[3 * i] = rt_render_color_byte(c.x);
+        rgb[3 * i + 1] = rt_render_color_byte(c.y);
+        rgb[3 * i + 2] = rt_render_color_byte(c.z);
+    }
     rt_sha256_ppm(rgb, size, size, digest);
     free(rgb);
     rtp_scene_close(&b);
 }
 
 /* Coloured and opaque shadows, glass, a mirror, triangles and quadrics, at an odd size
- * (partial pixel groups), with 1 and 4 samples per pixel. The portable kernel renders
- * pixel by pixel. */
+ * (partial pixel groups), with 1, 4 and 16 samples per pixel: the render by groups of
+ * pixels, one ray at a time (the portable kernel) or in packets, against the portable
+ * kernel's render pixel by pixel. */
 Test(packets, renders_equal_the_pixel_path)
 {
     static const char *const scenes[] = {"simple/box_cyl_trans_shadow.yaml", "simple/box_cyl_opaque_shadow.yaml",
                                          "simple/box_cyl_reflect.yaml", "trimeshes/martini.yaml"};
     for (size_t i = 0; i < sizeof scenes / sizeof scenes[0]; i++)
-        for (int32_t aa = 0; aa <= 1; aa++) {
+        for (int32_t aa = 0; aa <= 2; aa++) {
             uint8_t want[32], got[32];
-            render_hash(scenes[i], RT_KERNEL_PORTABLE, 61, aa, want);
-            for (rt_kernel k = RT_KERNEL_SSE2; k <= RT_KERNEL_AVX512; k++) {
+            render_hash(scenes[i], RT_KERNEL_PORTABLE, aa == 2 ? 19 : 61, aa, true, want);
+            for (rt_kernel k = RT_KERNEL_PORTABLE; k <= RT_KERNEL_AVX512; k++) {
                 if (!rtp_kernel_runs(k)) continue;
-                render_hash(scenes[i], k, 61, aa, got);
+                render_hash(scenes[i], k, aa == 2 ? 19 : 61, aa, false, got);
                 cr_assert(!memcmp(want, got, 32), "%s, aa %d, under %s: another image", scenes[i], aa,
                           rtp_kernel_name(k));
             }
