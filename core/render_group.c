@@ -99,7 +99,8 @@ static void trace_packets(const rt_tracer *tr, const rt_ray *ray, uint32_t n, rt
     }
     for (uint32_t i = 0; i < n; i++) {
         with.primed = &primed[i];
-        color[i] = rt_trace(&with, ray[i], 0);
+        /* A camera ray that hits nothing brings back black, as its trace would. */
+        color[i] = found[i] ? rt_trace(&with, ray[i], 0) : rt_v3(RT_ZERO, RT_ZERO, RT_ZERO);
     }
 }
 
