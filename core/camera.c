@@ -49,17 +49,22 @@ rt_ray rt_camera_lens_ray(const rt_camera *cam, rt_real x, rt_real y, rt_vec2 le
 
 uint32_t rt_camera_samples(const rt_camera *cam) { return 1u << (2 * cam->trace.samples_per_pixel_index); }
 
+/* The centre of cell i of `side` cells across a pixel, in (0, 1); with one cell 0.5,
+ * exactly what the division gives. */
+static rt_real cell_centre(uint32_t i, uint32_t side)
+{
+    return side == 1 ? RT_C(0.5) : rt_div(rt_add(rt_from_int(i), RT_C(0.5)), rt_from_int(side));
+}
+
 rt_real rt_camera_grid_x(const rt_camera *cam, uint32_t column, uint32_t a, uint32_t side)
 {
-    /* With one cell the cell centre is 0.5, exactly what the division gives. */
-    rt_real cell = side == 1 ? RT_C(0.5) : rt_div(rt_add(rt_from_int(a), RT_C(0.5)), rt_from_int(side));
-    return rt_div(rt_add(rt_from_int(column), cell), rt_from_int(cam->width));
+    return rt_div(rt_add(rt_from_int(column), cell_centre(a, side)), rt_from_int(cam->width));
 }
 
 rt_real rt_camera_grid_y(const rt_camera *cam, uint32_t row, uint32_t b, uint32_t side)
 {
-    rt_real cell = side == 1 ? RT_C(0.5) : rt_div(rt_add(rt_from_int(b), RT_C(0.5)), rt_from_int(side));
-    return rt_div(rt_add(rt_from_int(rt_camera_row_from_bottom(cam, row)), cell), rt_from_int(cam->height));
+    return rt_div(rt_add(rt_from_int(rt_camera_row_from_bottom(cam, row)), cell_centre(b, side)),
+                  rt_from_int(cam->height));
 }
 
 rt_ray rt_camera_grid_ray(const rt_camera *cam, uint32_t column, uint32_t row, uint32_t a, uint32_t b, uint32_t side)

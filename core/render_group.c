@@ -24,31 +24,32 @@ bool rt_render_groups_apply(const rt_tracer *tr)
     return !tr->log && !tr->primed && set->monte_carlo == 0 && set->sample_count_type == 0;
 }
 
-/* The camera rays' parts of a group whose top left pixel is (x0, y0): cell a of column
- * x0 + c at x_part[c * side + a], cell b of row y0 + r at y_part[r * side + b]. */
+/* The camera rays' parts of a group whose top left pixel is (x0, y0), with 2^side_log
+ * cells across a pixel: cell a of column x0 + c at x_part[(c << side_log) + a], cell b
+ * of row y0 + r at y_part[(r << side_log) + b]. */
 typedef struct {
-    uint32_t x0, y0, side, side_log;
+    uint32_t x0, y0, side_log;
     rt_vec3 x_part[GROUP_W << RT_MAX_SPP_INDEX], y_part[GROUP_H << RT_MAX_SPP_INDEX];
 } ray_parts;
 
 static void make_parts(const rt_camera *cam, rt_rect group, ray_parts *parts)
 {
-    uint32_t side = parts->side;
+    uint32_t log = parts->side_log, side = 1u << log;
     parts->x0 = group.x0;
     parts->y0 = group.y0;
     for (uint32_t x = group.x0; x < group.x1; x++)
         for (uint32_t a = 0; a < side; a++)
-            parts->x_part[(x - group.x0) * side + a] = rt_camera_x_part(cam, rt_camera_grid_x(cam, x, a, side));
+            parts->x_part[((x - group.x0) << log) + a] = rt_camera_x_part(cam, rt_camera_grid_x(cam, x, a, side));
     for (uint32_t y = group.y0; y < group.y1; y++)
         for (uint32_t b = 0; b < side; b++)
-            parts->y_part[(y - group.y0) * side + b] = rt_camera_y_part(cam, rt_camera_grid_y(cam, y, b, side));
+            parts->y_part[((y - group.y0) << log) + b] = rt_camera_y_part(cam, rt_camera_grid_y(cam, y, b, side));
 }
 
 /* rt_camera_pixel_ray(cam, column, row, sample), from the group's parts. */
 static rt_ray sample_ray(const rt_camera *cam, const ray_parts *parts, uint32_t column, uint32_t row, uint32_t sample)
 {
     uint32_t log = parts->side_log;
-    return rt_camera_part_ray(cam, parts->x_part[((column - parts->x0) << log) + (sample & (parts->side - 1))],
+    return rt_camera_part_ray(cam, parts->x_part[((column - parts->x0) << log) + (sample & ((1u << log) - 1))],
                               parts->y_part[((row - parts->y0) << log) + (sample >> log)]);
 }
 
@@ -63,7 +64,6 @@ static void trace_packets(const rt_tracer *tr, const rt_ray *ray, uint32_t n, rt
     rt_primed primed[BATCH];
     rt_shading_point p[BATCH];
     rt_tracer with = *tr;
-    if (n == 0) return;
     for (uint32_t i = 0; i < n; i++) rs[i] = rt_scene_prepare(scene, ray[i]);
     rt_scene_hit hit[BATCH];
     rt_scene_nearest_stream(scene, rs, n, hit, found);
@@ -112,7 +112,6 @@ void rt_render_rect_groups(const rt_tracer *tr, rt_rect area, rt_rect held, uint
     bool packets = tr->use_bvh && rt_bvh_packets(&tr->scene->bvh);
     ray_parts parts;
     parts.side_log = cam->trace.samples_per_pixel_index;
-    parts.side = 1u << parts.side_log;
     for (uint32_t gy = y0; gy < y1; gy += GROUP_H)
         for (uint32_t gx = x0; gx < x1; gx += GROUP_W) {
             rt_rect group = {gx, gy, gx + GROUP_W < x1 ? gx + GROUP_W : x1, gy + GROUP_H < y1 ? gy + GROUP_H : y1};
